@@ -1,0 +1,187 @@
+"""The kit of a gear-coupled chain: every part built for its place in the stack, and its pose at any
+crank angle.
+
+Stacking (z up, the base's top face at z = 0; g = axial gap, f = face width, t = plate thickness):
+gear layer j (j = 0..n-1) spans [L_j, L_j + f] with L_j = g + j·(f + 2g + t); plate j
+(j = 1..n) spans [P_j, P_j + t] with P_j = L_{j-1} + f + g. Layer 0 holds G1 and the drive
+gear; layer j holds D_j, M_j and G_{j+1}. Every gear rests on a thrust ring (height g) of what is
+under it: rings on the base and plate tops, or, for D_j, the top of G_j's boss, which stands g
+proud of plate j. G_j's collar (height g) spaces plate j above D_{j-1} and M_{j-1}.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..design.kinematics import clockings, gear_poses, joint_positions, link_angles
+from ..design.mechanism import KitParams, Mechanism
+from ..errors import DesignError
+from ..geometry import parts as P
+from ..geometry.parts import DFit, Part
+
+__all__ = ["Stack", "Kit", "build_kit"]
+
+FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
+CRANK_THICKNESS = 6.0
+HANDLE_R, HANDLE_LEN = 5.0, 30.0
+LEG_R = 8.0
+PEN_WALL = 2.0
+
+
+@dataclass(frozen=True)
+class Stack:
+    """z-levels of the stack, mm."""
+
+    gap: float
+    face: float
+    plate: float
+
+    @property
+    def pitch(self) -> float:
+        return self.face + 2 * self.gap + self.plate
+
+    def layer(self, j: int) -> float:
+        """Bottom of gear layer j (0 = G1 and the drive gear)."""
+        return self.gap + j * self.pitch
+
+    def plate_z(self, j: int) -> float:
+        """Bottom of plate j (1-based)."""
+        return self.layer(j - 1) + self.face + self.gap
+
+
+def _T(x: float = 0.0, y: float = 0.0, z: float = 0.0, angle: float = 0.0) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0, x], [s, c, 0, y], [0, 0, 1, z], [0, 0, 0, 1]], dtype=float)
+
+
+@dataclass(frozen=True)
+class Kit:
+    """Parts of a mechanism, and where each one is at any crank angle."""
+
+    mechanism: Mechanism
+    params: KitParams
+    stack: Stack
+    parts: tuple[Part, ...]
+    static: dict = field(default_factory=dict)  # name -> (4, 4) pose of parts fixed to the base
+    clock: dict = field(default_factory=dict)
+
+    def part(self, name: str) -> Part:
+        return next(p for p in self.parts if p.name == name)
+
+    def poses(self, theta: float) -> dict[str, np.ndarray]:
+        """name -> (4, 4) world-from-local pose of every part at crank angle θ (rad)."""
+        mech, st = self.mechanism, self.stack
+        a = link_angles(mech, theta)
+        J = joint_positions(mech, theta)
+        gp = gear_poses(mech, theta, self.clock)
+        out = dict(self.static)
+        for j in range(1, len(mech.chain.links) + 1):
+            out[f"B{j}"] = _T(J[j - 1][0], J[j - 1][1], st.plate_z(j), a[j])
+        out["pen_holder"] = _T(J[-1][0], J[-1][1], st.plate_z(len(mech.chain.links)), a[-1])
+        for name, p in gp.items():
+            layer = 0 if name in ("G1", "drive") else int(name[1:]) - (1 if name[0] == "G" else 0)
+            out[name] = _T(p.centre[0], p.centre[1], st.layer(layer), p.angle)
+        drive = gp["drive"]
+        for name in ("drive_axle", "crank"):
+            z = 0.0 if name == "drive_axle" else -self.params.base_thickness - st.gap
+            out[name] = _T(drive.centre[0], drive.centre[1], z, drive.angle)
+        return out
+
+
+def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
+    """Build every part of the kit. ``progress(name)`` is called as each part is made."""
+    say = progress or (lambda name: None)
+    st = Stack(params.joints.axial_gap, params.face_width, params.plate_thickness)
+    g, f, t = st.gap, st.face, st.plate
+    tol = params.system.chord_tolerance
+    jn = params.joints
+    ra = jn.axle_diameter / 2
+    bore_r = params.bore / 2
+    post = DFit(ra, jn.press_clearance)
+    boss = DFit(bore_r + params.hub_wall / 2, jn.press_clearance)
+    rb = boss.radius
+    n = len(mech.chain.links)
+    clock = clockings(mech)
+    parts: list[Part] = []
+
+    def add(part: Part):
+        say(part.name)
+        parts.append(part)
+
+    # gears
+    def fixed(name: str, spec):
+        collar_r = min(rb + 2.0, spec.root_radius - 0.5)
+        solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
+        add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
+
+    fixed("G1", mech.G1)
+    add(Part("drive", "gear", P.bored_gear(mech.drive, f, post.hole(FEATURE_TOL)), gear=mech.drive))
+    for s in mech.stages:
+        add(Part(f"D{s.j}", "gear", P.bored_gear(s.D, f, post.hole(FEATURE_TOL)), gear=s.D))
+        add(Part(f"M{s.j}", "gear", P.bored_gear(s.M, f, P.disc(bore_r, FEATURE_TOL)), gear=s.M))
+        fixed(f"G{s.j + 1}", s.G)
+
+    # link plates
+    pen_spigot = DFit(params.pen_diameter / 2 + PEN_WALL, jn.press_clearance)
+    prox_r = rb + jn.press_clearance / 2 + params.boss_wall
+    for j, link in enumerate(mech.chain.links, 1):
+        S, Pz = link.length, st.plate_z(j)
+        feats, idler, distal_hole = [], None, None
+        if j < n:
+            stage = mech.stages[j - 1]
+            top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
+            feats += [(P.annulus(ra, rb, FEATURE_TOL, (S, 0.0)), t, t + g),
+                      (P.disc(ra, FEATURE_TOL, (S, 0.0)), t, top - Pz)]
+            if j + 1 < n:
+                feats.append((P.translate2d(post.shaft(FEATURE_TOL), S, 0.0), top - Pz, top - Pz + f))
+            c = stage.idler
+            feats += [(P.annulus(ra, rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
+            idler = (c, ra + params.boss_wall)
+            distal = (S, ra + params.boss_wall)
+        else:
+            distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
+            distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
+        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole)
+        add(Part(f"B{j}", "link", solid))
+
+    # base, legs, drive axle, crank, pen holder
+    bt = params.base_thickness
+    dx, dy = mech.drive_centre
+    a_drive = math.hypot(dx, dy)
+    u = np.array([dx, dy]) / a_drive
+    v = np.array([-u[1], u[0]])
+    sweep = params.crank_radius + HANDLE_R + 4.0
+    w = sweep + LEG_R + 2.0
+    legs = [tuple(float(q) for q in s * u + sgn * w * v) for s in (-LEG_R, a_drive + LEG_R) for sgn in (1, -1)]
+    crank_depth = g + CRANK_THICKNESS + HANDLE_LEN
+    if params.leg_height < crank_depth + 3.0:
+        raise DesignError(f"legs of {params.leg_height:g} mm leave no room under the base for the crank "
+                          f"(needs {crank_depth + 3.0:g} mm)", "base.leg_height_mm")
+    outline = P.hull_of_discs([((0.0, 0.0), ra + params.boss_wall + 4.0), ((dx, dy), rb + params.boss_wall)]
+                              + [(c, LEG_R + 2.0) for c in legs], FEATURE_TOL)
+    holes = [P.disc(bore_r, FEATURE_TOL, (dx, dy))] + [P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c) for c in legs]
+    outline = outline.difference(P.union2d(holes))
+    top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
+    feats = [(P.annulus(ra, rb, FEATURE_TOL), 0.0, g), (P.disc(ra, FEATURE_TOL), 0.0, top1),
+             (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+    if n > 1:
+        feats.append((post.shaft(FEATURE_TOL), top1, top1 + f))
+    add(Part("base", "base", P.base_plate(outline, bt, feats)))
+    leg_solid = P.leg(LEG_R, params.leg_height, ra - jn.press_clearance / 2, bt, FEATURE_TOL)
+    for i in range(len(legs)):
+        add(Part(f"leg{i + 1}", "leg", leg_solid))
+    zc = -bt - g
+    add(Part("drive_axle", "axle", P.drive_axle(post, [("D", zc - CRANK_THICKNESS, zc), ("round", zc, g), ("D", g, g + f)],
+                                                FEATURE_TOL)))
+    add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
+                                       HANDLE_LEN, FEATURE_TOL), print_flip=True))
+    add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
+                                                      params.pen_diameter / 2 + 0.1, 2.0, FEATURE_TOL),
+             print_flip=True))
+
+    static = {"base": _T()}
+    static.update({f"leg{i + 1}": _T(c[0], c[1], -bt) for i, c in enumerate(legs)})
+    return Kit(mech, params, st, tuple(parts), static, clock)

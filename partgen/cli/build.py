@@ -1,0 +1,60 @@
+"""``partgen build CONFIG [-o DIR]``: write the kit of a design."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+from .. import pipeline
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("build", help="build the STL kit, manifest and assembly of a design")
+    p.add_argument("config", help="design YAML (configs/butterfly.yaml)")
+    p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress")
+    p.set_defaults(run=run)
+
+
+class Progress:
+    """One status line on stderr, rewritten in place on a terminal."""
+
+    def __init__(self, quiet: bool):
+        self.quiet, self.n, self.tty = quiet, 0, sys.stderr.isatty()
+
+    def __call__(self, name: str) -> None:
+        self.n += 1
+        if not self.quiet and self.tty:
+            print(f"\r  building {self.n:3d}: {name:<14}", end="", file=sys.stderr, flush=True)
+
+    def done(self) -> None:
+        if not self.quiet and self.tty:
+            print("\r" + " " * 40 + "\r", end="", file=sys.stderr, flush=True)
+
+
+def run(args) -> int:
+    t0 = time.perf_counter()
+    progress = Progress(args.quiet)
+    loaded, kit, man, dest = pipeline.build(args.config, args.out, progress)
+    progress.done()
+    mech = loaded.mechanism
+    for f in mech.findings:
+        if f.severity == "warning":
+            print(f"partgen: warning: {loaded.path}: {f.key_path}: {f.message}", file=sys.stderr)
+        else:
+            print(f"partgen: note: {loaded.path}: {f.key_path}: {f.message}", file=sys.stderr)
+    parts = man["parts"]
+    n_gears = sum(p["count"] for p in parts if p["role"] == "gear")
+    mass = sum(p["mass_g"] * p["count"] for p in parts)
+    print(f"{loaded.params.name}: {len(mech.chain.links)} links, {n_gears} gears, "
+          f"{sum(p['count'] for p in parts)} parts ({len(parts)} distinct), {mass:.0f} g of {loaded.params.material}")
+    print(f"{'part':<12}{'role':<11}{'count':>5}{'triangles':>11}{'volume cm3':>12}{'mass g':>9}  bbox mm")
+    for p in parts:
+        print(f"{p['name']:<12}{p['role']:<11}{p['count']:>5}{p['triangles']:>11}{p['volume_mm3'] / 1000:>12.2f}"
+              f"{p['mass_g']:>9.1f}  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])}")
+    warn = sum(f.severity == "warning" for f in mech.findings)
+    print(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {time.perf_counter() - t0:.2f} s"
+          + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
+    return 0

@@ -1,0 +1,106 @@
+"""Read a design YAML and its printer profile into validated models; every failure is a ConfigError
+naming the file, the key path and the problem."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TypeVar
+
+import yaml
+from pydantic import BaseModel, ValidationError
+
+from ..errors import ConfigError
+from .schema import Design, Printer
+
+__all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path"]
+
+M = TypeVar("M", bound=BaseModel)
+
+
+@dataclass(frozen=True)
+class LoadedDesign:
+    path: Path
+    design: Design
+    printer_path: Path
+    printer: Printer
+
+
+def read_yaml(path: Path) -> dict:
+    """The YAML mapping in ``path``; ConfigError for a missing file, bad syntax or a non-mapping."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError(path, "", "no such file") from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise ConfigError(path, "", f"cannot read: {e}") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as e:
+        mark = getattr(e, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        problem = getattr(e, "problem", None) or str(e).splitlines()[0]
+        raise ConfigError(path, "", f"invalid YAML{where}: {problem}") from None
+    if data is None:
+        raise ConfigError(path, "", "the file is empty: expected a mapping of design keys")
+    if not isinstance(data, dict):
+        raise ConfigError(path, "", f"expected a mapping of keys at the top level, got a {type(data).__name__}")
+    return data
+
+
+def key_path(loc: tuple, data: Any) -> str:
+    """``('teeth', 0, 'D')`` → ``teeth[0].D``, walking ``data`` so pydantic's union tags are dropped."""
+    out, node = "", data
+    for item in loc:
+        if isinstance(node, dict) and item in node:
+            out += f".{item}" if out else str(item)
+            node = node[item]
+        elif isinstance(node, list) and isinstance(item, int) and 0 <= item < len(node):
+            out += f"[{item}]"
+            node = node[item]
+        elif isinstance(item, str) and not any(c in item for c in "[]()'") and node is not None and isinstance(node, dict):
+            out += f".{item}" if out else item  # a missing key
+            node = None
+    return out
+
+
+def _describe(err: dict, data: Any) -> tuple[str, str]:
+    path = key_path(tuple(err["loc"]), data)
+    msg = err["msg"]
+    if msg.startswith("Value error, "):
+        msg = msg[len("Value error, "):]
+    if err["type"] == "missing":
+        return path, "required key is missing"
+    if err["type"] == "extra_forbidden":
+        return path, "unknown key (not part of the schema; check its spelling)"
+    got = err.get("input")
+    if not isinstance(got, (dict, list)):
+        msg += f", got {got!r}"
+    return path, msg
+
+
+def validate(model: type[M], data: dict, path: Path) -> M:
+    """``model`` from ``data``; the first error becomes a ConfigError with its key path."""
+    try:
+        return model.model_validate(data)
+    except ValidationError as e:
+        errors = e.errors()
+        # prefer errors inside the input over union-alternative noise: the deepest path first
+        errors.sort(key=lambda er: -len(key_path(tuple(er["loc"]), data)))
+        key, problem = _describe(errors[0], data)
+        more = len({key_path(tuple(er["loc"]), data) for er in errors}) - 1
+        if more > 0:
+            problem += f" (and {more} more problem{'s' if more > 1 else ''})"
+        raise ConfigError(path, key, problem) from None
+
+
+def load_design(path: str | Path) -> LoadedDesign:
+    """Design and printer profile of a design file; the printer path is relative to the design."""
+    path = Path(path)
+    data = read_yaml(path)
+    design = validate(Design, data, path)
+    printer_path = (path.parent / design.printer).resolve()
+    if not printer_path.is_file():
+        raise ConfigError(path, "printer", f"no printer profile at {design.printer!r} (looked for {printer_path})")
+    printer = validate(Printer, read_yaml(printer_path), printer_path)
+    return LoadedDesign(path, design, printer_path, printer)

@@ -1,0 +1,80 @@
+"""Validated config → the design layer's inputs. The one place units are converted (deg → rad,
+g/cm³ → g/mm³, radial → diametral clearance)."""
+
+from __future__ import annotations
+
+import math
+
+from ..design import curve as curves
+from ..design.gearing import ToothSystem
+from ..design.mechanism import Joints, KitParams, MechanismInputs, PrinterLimits
+from ..design.synthesis import Chain, Link, chain_order, links_from_curve, prune
+from ..errors import ConfigError
+from .loader import LoadedDesign
+
+__all__ = ["resolve"]
+
+
+def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]:
+    d = loaded.design
+    if d.curve is not None:
+        c = d.curve
+        if c.polar is not None:
+            fc = curves.from_polar(c.polar.constant, c.polar.sin, c.polar.cos)
+        else:
+            fc = curves.from_cartesian(c.cartesian.a, c.cartesian.b, c.cartesian.c, c.cartesian.d)
+        offset, links = links_from_curve(fc, c.scale_mm_per_unit)
+        names = {l.name for l in links}
+        for i, n in enumerate(c.drop_links):
+            if n not in names:
+                raise ConfigError(loaded.path, f"curve.drop_links[{i}]",
+                                  f"the curve has no link {n!r} (it has {', '.join(l.name for l in links)})")
+        kept = chain_order(prune(links, c.drop_links))
+        if not kept:
+            raise ConfigError(loaded.path, "curve", "the curve has no rotating links left")
+        return Chain(kept, offset), fc, c.scale_mm_per_unit, tuple(c.drop_links)
+    links = tuple(Link(r.name, r.speed, r.length_mm, math.radians(r.initial_angle_deg)) for r in d.links)
+    if not links:
+        raise ConfigError(loaded.path, "links", "the design table has no links")
+    return Chain(links, complex(*d.offset_mm)), None, 1.0, ()
+
+
+def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
+    """The mechanism inputs and kit parameters of a loaded design (mm, rad)."""
+    d, p = loaded.design, loaded.printer
+    chain, fc, scale, dropped = _chain(loaded)
+    g = d.gears
+    system = ToothSystem(
+        module=g.module_mm,
+        pressure_angle=math.radians(g.pressure_angle_deg),
+        addendum_coeff=g.addendum_coeff,
+        dedendum_coeff=g.dedendum_coeff,
+        cutter_tip_coeff=g.cutter_tip_radius_coeff,
+        backlash_per_gear=g.backlash_per_gear_mm,
+        profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
+        chord_tolerance=g.chord_tolerance_mm,
+    )
+    teeth = None if d.teeth == "auto" else tuple((t.D, t.M, t.G) for t in d.teeth)
+    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped)
+    j = d.joints
+    params = KitParams(
+        name=d.name,
+        system=system,
+        face_width=g.face_width_mm,
+        plate_thickness=d.plates.thickness_mm,
+        boss_wall=d.plates.boss_wall_mm,
+        hub_wall=g.hub_wall_mm,
+        joints=Joints(j.axle_diameter_mm, j.running_diametral, j.press_fit_diametral, j.axial_gap_mm),
+        base_thickness=d.base.thickness_mm,
+        leg_height=d.base.leg_height_mm,
+        crank_radius=d.base.crank_radius_mm,
+        pen_diameter=d.pen.diameter_mm,
+        pen_holder_height=d.pen.holder_height_mm,
+        density=d.material.density_g_cm3 / 1000.0,
+        material=d.material.name,
+        printer=PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
+                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm),
+        drive_teeth=d.drive.teeth,
+        drive_angle=math.radians(d.drive.angle_deg),
+    )
+    return inputs, params

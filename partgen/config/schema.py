@@ -1,0 +1,179 @@
+"""The YAML schema of a design and a printer profile (pydantic v2, strict, unknown keys forbidden).
+
+Every length key ends in ``_mm``, every angle in ``_deg``; clearances say ``radial`` or
+``diametral``. Defaults are documented in README's config reference.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+__all__ = ["Printer", "Design"]
+
+Pos = Annotated[float, Field(gt=0)]
+NonNeg = Annotated[float, Field(ge=0)]
+Teeth = Annotated[int, Field(ge=4, le=1000)]
+
+
+class Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True)
+
+
+class Printer(Strict):
+    name: str
+    build_envelope_mm: Annotated[list[Pos], Field(min_length=3, max_length=3)]
+    resolution_mm: Pos
+    min_hole_diameter_mm: Pos = Field(description="smallest reliable revolute-joint hole")
+    min_gear_diameter_mm: Pos = Field(description="smallest reliable gear (reference pitch diameter)")
+    min_link_length_mm: Pos
+    min_wall_mm: Pos
+
+
+class Polar(Strict):
+    """ρ(θ) = constant + Σ sin[k]·sin kθ + cos[k]·cos kθ (curve units)."""
+
+    constant: float = 0.0
+    sin: dict[Annotated[int, Field(ge=1, le=64)], float] = {}
+    cos: dict[Annotated[int, Field(ge=1, le=64)], float] = {}
+
+
+class Cartesian(Strict):
+    """x = Σ a_k cos kθ + b_k sin kθ, y = Σ c_k cos kθ + d_k sin kθ; lists indexed by k from 0."""
+
+    a: list[float]
+    b: list[float]
+    c: list[float]
+    d: list[float]
+
+    @model_validator(mode="after")
+    def _same_length(self):
+        if not (len(self.a) == len(self.b) == len(self.c) == len(self.d)):
+            raise ValueError("a, b, c and d must have the same length")
+        return self
+
+
+class Curve(Strict):
+    polar: Polar | None = None
+    cartesian: Cartesian | None = None
+    scale_mm_per_unit: Pos
+    drop_links: list[str] = []
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if (self.polar is None) == (self.cartesian is None):
+            raise ValueError("give exactly one of 'polar' or 'cartesian'")
+        return self
+
+
+class LinkRow(Strict):
+    name: str
+    speed: int
+    length_mm: Pos
+    initial_angle_deg: float
+
+    @model_validator(mode="after")
+    def _speed(self):
+        if self.speed == 0:
+            raise ValueError("speed must be a non-zero integer (0 is the fixed ground offset)")
+        return self
+
+
+class StageTeeth(Strict):
+    """Teeth of link j's stage: D_j, idler M_j, G_{j+1}."""
+
+    D: Teeth
+    M: Teeth
+    G: Teeth
+
+
+class Gears(Strict):
+    module_mm: Pos
+    pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
+    addendum_coeff: Annotated[float, Field(gt=0, le=2)] = 1.0
+    dedendum_coeff: Annotated[float, Field(gt=0, le=2.5)] = 1.25
+    cutter_tip_radius_coeff: Annotated[float, Field(ge=0, le=0.6)] = 0.38
+    profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1, le=1.5)] = "auto"
+    backlash_per_gear_mm: NonNeg = 0.05
+    face_width_mm: Pos
+    chord_tolerance_mm: Annotated[float, Field(ge=1e-4, le=0.1)] = 0.001
+    hub_wall_mm: Pos = 3.0
+    tip_gap_mm: NonNeg = 1.5
+    idler_reach_mm: NonNeg = 1.0
+
+
+class Drive(Strict):
+    teeth: Teeth
+    angle_deg: float = -90.0
+
+
+class Plates(Strict):
+    thickness_mm: Pos
+    boss_wall_mm: Pos = 4.0
+
+
+class Joints(Strict):
+    axle_diameter_mm: Pos
+    running_clearance_radial_mm: float | None = None
+    running_clearance_diametral_mm: float | None = None
+    press_fit_clearance_radial_mm: float | None = None
+    press_fit_clearance_diametral_mm: float | None = None
+    axial_gap_mm: Pos = 0.5
+
+    @model_validator(mode="after")
+    def _one_each(self):
+        for kind in ("running", "press_fit"):
+            r, d = getattr(self, f"{kind}_clearance_radial_mm"), getattr(self, f"{kind}_clearance_diametral_mm")
+            if (r is None) == (d is None):
+                raise ValueError(f"give exactly one of {kind}_clearance_radial_mm or {kind}_clearance_diametral_mm")
+        return self
+
+    @property
+    def running_diametral(self) -> float:
+        r = self.running_clearance_radial_mm
+        return 2 * r if r is not None else self.running_clearance_diametral_mm
+
+    @property
+    def press_fit_diametral(self) -> float:
+        r = self.press_fit_clearance_radial_mm
+        return 2 * r if r is not None else self.press_fit_clearance_diametral_mm
+
+
+class Base(Strict):
+    thickness_mm: Pos = 6.0
+    leg_height_mm: Pos = 45.0
+    crank_radius_mm: Pos = 35.0
+
+
+class Pen(Strict):
+    diameter_mm: Pos = 10.0
+    holder_height_mm: Pos = 20.0
+
+
+class Material(Strict):
+    name: str
+    density_g_cm3: Pos
+
+
+class Design(Strict):
+    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
+    description: str = ""
+    printer: str
+    curve: Curve | None = None
+    links: list[LinkRow] | None = None
+    offset_mm: Annotated[list[float], Field(min_length=2, max_length=2)] = [0.0, 0.0]
+    teeth: Literal["auto"] | list[StageTeeth]
+    gears: Gears
+    drive: Drive
+    plates: Plates
+    joints: Joints
+    base: Base = Base()
+    pen: Pen = Pen()
+    material: Material
+
+    @model_validator(mode="after")
+    def _one_source(self):
+        if (self.curve is None) == (self.links is None):
+            raise ValueError("give exactly one of 'curve' (derive the links) or 'links' (a design table)")
+        return self

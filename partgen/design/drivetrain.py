@@ -1,0 +1,200 @@
+"""The gear train of a serial chain: Eq 11 ratios, tooth counts, mesh conditions, idler placement.
+
+Stage j (j = 1..n-1) lives on link B_j of centre distance S_j: gear D_j (fixed to B_{j-1}, D_1 to
+the base) at the proximal joint drives G_{j+1} (fixed to B_{j+1}) at the distal joint through an
+idler M_j on a pin of B_j. Positions are in the link frame: proximal joint at (0, 0), distal joint
+at (S, 0), +v to the left of the link (counter-clockwise). mm, rad.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Sequence
+
+from ..errors import DesignError
+from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
+
+__all__ = [
+    "Limits", "Stage", "Finding", "eq11_ratios", "idler_centre", "make_stage",
+    "choose_stage", "verify_stage",
+]
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What a printable stage must respect (mm).
+
+    min_pitch_diameter : the printer's smallest reliable gear.
+    min_root_diameter : room for a gear's bore and hub wall (bore + 2·hub wall).
+    tip_gap : margin by which D's and G's tip circles must clear (Eq 12 with margin).
+    idler_reach : margin by which a_DM + a_MG must exceed S (Eq 13 with margin: an idler
+        exactly in line with D and G has no margin at all).
+    """
+
+    min_pitch_diameter: float
+    min_root_diameter: float
+    tip_gap: float
+    idler_reach: float
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A verification result: ``severity`` "warning" (fails `check`) or "info"; ``key_path`` the config key."""
+
+    severity: str
+    code: str
+    message: str
+    key_path: str = ""
+
+
+@dataclass(frozen=True)
+class Stage:
+    """The gears of link B_j and where they sit in its frame."""
+
+    j: int
+    length: float
+    ratio: Fraction
+    D: GearSpec
+    M: GearSpec
+    G: GearSpec
+    a_DM: float
+    a_MG: float
+    idler: tuple[float, float]
+
+    @property
+    def gears(self) -> dict[str, GearSpec]:
+        return {"D": self.D, "M": self.M, "G": self.G}
+
+
+def eq11_ratios(speeds: Sequence[int]) -> tuple[Fraction, ...]:
+    """T_D,j / T_G,j+1 = (ω_{j+1} - ω_j)/(ω_{j-1} - ω_j), ω_0 = 0 (the base), for j = 1..n-1.
+
+    Raises DesignError for a ratio that no pair of gears gives (zero, infinite or negative: an
+    idler keeps the direction, so D and G must turn the same way relative to the link).
+    """
+    w = [0, *speeds]
+    out = []
+    for j in range(1, len(speeds)):
+        num, den = w[j + 1] - w[j], w[j - 1] - w[j]
+        if den == 0 or num == 0:
+            raise DesignError(f"links {j} and {j + 1 if den else j - 1} turn at the same speed "
+                              f"({w[j]}): Eq 11 gives no finite, non-zero gear ratio", f"links[{j - 1}].speed")
+        r = Fraction(num, den)
+        if r < 0:
+            raise DesignError(f"Eq 11 ratio {r} on link {j} is negative: D and G would turn opposite "
+                              "ways, which an idler train cannot do", f"links[{j - 1}].speed")
+        out.append(r)
+    return tuple(out)
+
+
+def idler_centre(length: float, a_dm: float, a_mg: float, side: int = 1) -> tuple[float, float] | None:
+    """Idler centre in the link frame by intersecting circles of radius a_dm about (0, 0) and a_mg
+    about (length, 0); ``side`` +1 left, -1 right. None when the circles do not meet."""
+    u = (length**2 + a_dm**2 - a_mg**2) / (2 * length)
+    h2 = a_dm**2 - u**2
+    if h2 < -1e-9 * max(a_dm, 1.0) ** 2:
+        return None
+    return (u, side * math.sqrt(max(h2, 0.0)))
+
+
+def _clearance(centre: tuple[float, float], radius: float, obstacles) -> float:
+    return min((math.dist(centre, c) - radius - r for c, r in obstacles), default=math.inf)
+
+
+def make_stage(j: int, length: float, ratio: Fraction, teeth: tuple[int, int, int], system: ToothSystem,
+               obstacles: Sequence[tuple[tuple[float, float], float]] = ()) -> Stage:
+    """Place a stage's gears. ``obstacles`` are other circles (centre, radius) in the idler's layer,
+    link frame; the idler goes on the side that keeps clearest of them (left on a tie).
+    Raises DesignError when the idler cannot reach both gears."""
+    D, M, G = (make_gear(t, system) for t in teeth)
+    a_dm, a_mg = centre_distance(D, M), centre_distance(M, G)
+    sides = [p for p in (idler_centre(length, a_dm, a_mg, s) for s in (1, -1)) if p is not None]
+    if not sides:
+        raise DesignError(
+            f"link {j}: an idler of {M.teeth} teeth cannot reach both D ({D.teeth} teeth) and G "
+            f"({G.teeth} teeth) {length:.3f} mm apart: a_DM + a_MG = {a_dm + a_mg:.3f} mm "
+            f"< S (or |a_DM - a_MG| > S)", f"teeth[{j - 1}].M")
+    obstacles = [((0.0, 0.0), D.tip_radius), ((length, 0.0), G.tip_radius), *obstacles]
+    best = max(sides, key=lambda p: (round(_clearance(p, M.tip_radius, obstacles[2:]), 9), p[1] >= 0))
+    return Stage(j, length, ratio, D, M, G, a_dm, a_mg, best)
+
+
+def _min_teeth(limits: Limits, system: ToothSystem) -> int:
+    """Smallest tooth count whose pitch and root diameters respect the limits (with its shift)."""
+    for z in range(4, 1000):
+        g = make_gear(z, system)
+        if 2 * g.pitch_radius >= limits.min_pitch_diameter - 1e-9 and 2 * g.root_radius >= limits.min_root_diameter - 1e-9:
+            return z
+    raise DesignError("no tooth count makes a gear large enough for its bore", "gears.module_mm")
+
+
+def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> Stage:
+    """``teeth: auto`` for one stage: T_D/T_G equal to the Eq 11 ratio exactly, Eq 12 and the idler's
+    reach met with the margins of ``limits``, every gear at least the printable minimum.
+
+    Among feasible choices, the one with the smallest largest gear (then the fewest teeth) wins:
+    it keeps plates and gears small. (On the paper's link 1 this objective without margins gives
+    exactly the paper's 80/80/40.) Raises DesignError when no integers work.
+    """
+    zmin = _min_teeth(limits, system)
+    best, best_key = None, None
+    n = 1
+    while True:
+        td, tg = ratio.numerator * n, ratio.denominator * n
+        D, G = make_gear(td, system), make_gear(tg, system)
+        if D.tip_radius + G.tip_radius + limits.tip_gap > length:
+            break  # Eq 12 fails from here on: every larger n only grows the gears
+        if min(td, tg) >= zmin:
+            for tm in range(zmin, 1000):
+                M = make_gear(tm, system)
+                if centre_distance(D, M) + centre_distance(M, G) >= length + limits.idler_reach:
+                    key = (max(td, tm, tg), td + tm + tg)
+                    if best_key is None or key < best_key:
+                        best, best_key = (td, tm, tg), key
+                    break
+        n += 1
+    if best is None:
+        raise DesignError(
+            f"link {j} (S = {length:.3f} mm): no whole teeth give the Eq 11 ratio {ratio} with D and G "
+            f"at least {zmin} teeth and their tips {limits.tip_gap:g} mm apart at module "
+            f"{system.module:g} mm; use a smaller module or a larger scale", "teeth")
+    return make_stage(j, length, ratio, best, system)
+
+
+def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:
+    """Every condition ``choose_stage`` guarantees, checked on a stage given explicitly."""
+    out: list[Finding] = []
+    D, M, G, S = stage.D, stage.M, stage.G, stage.length
+    given = Fraction(D.teeth, G.teeth)
+    if given != stage.ratio:
+        out.append(Finding("warning", "eq11", f"link {stage.j}: T_D/T_G = {D.teeth}/{G.teeth} = {float(given):.6f}, "
+                           f"Eq 11 needs {stage.ratio} = {float(stage.ratio):.6f}: the pen will not trace the curve", key))
+    gap = S - D.tip_radius - G.tip_radius
+    if gap <= 0:
+        out.append(Finding("warning", "eq12", f"link {stage.j}: tip circles of D ({D.teeth}) and G ({G.teeth}) "
+                           f"{'touch' if abs(gap) < 1e-9 else 'overlap'}: m/2(T_D+T_G) + 2a = {S - gap:.3f} mm, "
+                           f"not < S = {S:.3f} mm (Eq 12)", key))
+    elif gap < limits.tip_gap:
+        out.append(Finding("warning", "eq12-margin", f"link {stage.j}: tip circles of D and G clear by only {gap:.3f} mm "
+                           f"(< {limits.tip_gap:g} mm)", key))
+    m = D.module
+    if not (m / 2 * (3 * D.teeth + G.teeth) >= S or m / 2 * (D.teeth + 3 * G.teeth) >= S):
+        out.append(Finding("warning", "eq13", f"link {stage.j}: Eq 13 fails, no idler as large as D or G reaches both", key))
+    reach = stage.a_DM + stage.a_MG - S
+    if reach < limits.idler_reach:
+        out.append(Finding("warning", "idler-reach", f"link {stage.j}: idler {M.teeth} reaches with {reach:.3f} mm to spare "
+                           f"(< {limits.idler_reach:g} mm; 0 means D, M, G stand in one line)", key))
+    for name, g in stage.gears.items():
+        if 2 * g.pitch_radius < limits.min_pitch_diameter - 1e-9:
+            out.append(Finding("warning", "small-gear", f"link {stage.j}: {name} ({g.teeth} teeth) pitch diameter "
+                               f"{2 * g.pitch_radius:.2f} mm < printer's smallest gear {limits.min_pitch_diameter:g} mm", key))
+        if 2 * g.root_radius < limits.min_root_diameter - 1e-9:
+            out.append(Finding("warning", "bore", f"link {stage.j}: {name} ({g.teeth} teeth) root diameter "
+                               f"{2 * g.root_radius:.2f} mm leaves no room for its bore and hub "
+                               f"(needs {limits.min_root_diameter:g} mm)", key))
+        if g.undercut:
+            out.append(Finding("info", "undercut", f"link {stage.j}: {name} ({g.teeth} teeth, x = {g.profile_shift:g}) "
+                               "is undercut: the cutter removes the foot of the involute", key))
+    return out

@@ -1,0 +1,113 @@
+"""Motion of a gear-coupled chain over the crank angle θ (pure math, mm and rad).
+
+Bodies: the base (index 0) and links B_1..B_n. Link j points at ``α_j(θ) = speed_j·θ + δ_j``.
+Every gear turns with what it is fixed to plus, for an idler or the drive gear, what its mesh
+makes it turn; ``clocking`` is the constant angle of a gear's tooth 0 relative to that, chosen
+so every meshing pair interleaves (tooth of one centred in a space of the other on the line of
+centres) at θ = 0 — the involute action keeps them interleaved from there on.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .mechanism import Mechanism
+
+__all__ = ["GearPose", "link_angles", "joint_positions", "gear_poses", "mesh_pairs", "clockings", "mesh_phase_error"]
+
+TAU = 2 * math.pi
+
+
+@dataclass(frozen=True)
+class GearPose:
+    """A gear's centre (x, y) mm and the world angle of its tooth 0, rad, at one crank angle."""
+
+    name: str
+    carrier: int
+    centre: tuple[float, float]
+    angle: float
+
+
+def link_angles(mech: Mechanism, theta: float) -> np.ndarray:
+    """(n + 1,) rad: α_0 = 0 for the base, then α_j for each link."""
+    return np.array([0.0] + [l.speed * theta + l.phase for l in mech.chain.links])
+
+
+def joint_positions(mech: Mechanism, theta: float) -> np.ndarray:
+    """(n + 1, 2) mm: J_0 = the ground pivot at the origin, J_j = distal joint of link j (J_n = pen)."""
+    a = link_angles(mech, theta)[1:]
+    lengths = np.array([l.length for l in mech.chain.links])
+    steps = lengths * np.exp(1j * a)
+    p = np.concatenate([[0j], np.cumsum(steps)])
+    return np.column_stack([p.real, p.imag])
+
+
+def _rot(angle: float, v: tuple[float, float]) -> tuple[float, float]:
+    c, s = math.cos(angle), math.sin(angle)
+    return (c * v[0] - s * v[1], s * v[0] + c * v[1])
+
+
+def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
+    """Gear poses without clocking (every gear's tooth 0 on its carrier's +x at θ = 0)."""
+    a = link_angles(mech, theta)
+    J = joint_positions(mech, theta)
+    out = [
+        GearPose("G1", 1, (0.0, 0.0), a[1]),
+        GearPose("drive", 0, mech.drive_centre, -(mech.G1.teeth / mech.drive.teeth) * a[1]),
+    ]
+    for s in mech.stages:
+        j = s.j
+        rel_d = a[j - 1] - a[j]  # D_j relative to the carrier B_j
+        idler = _rot(a[j], s.idler)
+        out += [
+            GearPose(f"D{j}", j - 1, tuple(J[j - 1]), a[j - 1]),
+            GearPose(f"M{j}", j, (J[j - 1][0] + idler[0], J[j - 1][1] + idler[1]),
+                     a[j] - (s.D.teeth / s.M.teeth) * rel_d),
+            GearPose(f"G{j + 1}", j + 1, tuple(J[j]), a[j + 1]),
+        ]
+    return out
+
+
+def mesh_pairs(mech: Mechanism) -> list[tuple[str, str]]:
+    """Meshing pairs (driver, driven) in the order their clockings are decided."""
+    pairs = [("G1", "drive")]
+    for s in mech.stages:
+        pairs += [(f"D{s.j}", f"M{s.j}"), (f"M{s.j}", f"G{s.j + 1}")]
+    return pairs
+
+
+def _phase(pose_a: GearPose, za: int, pose_b: GearPose, zb: int) -> float:
+    """u_A + u_B - 1/2 (mod 1, in [-1/2, 1/2)): 0 when the pair interleaves exactly."""
+    beta = math.atan2(pose_b.centre[1] - pose_a.centre[1], pose_b.centre[0] - pose_a.centre[0])
+    ua = (beta - pose_a.angle) * za / TAU
+    ub = (beta + math.pi - pose_b.angle) * zb / TAU
+    return (ua + ub - 0.5 + 0.5) % 1.0 - 0.5
+
+
+def clockings(mech: Mechanism) -> dict[str, float]:
+    """Tooth-0 clocking of every gear (rad): D_j and G1 are the references (0); each driven gear
+    is turned so it interleaves with its driver at θ = 0."""
+    teeth = dict(mech.gears)
+    poses = {p.name: p for p in _raw_poses(mech, 0.0)}
+    clock = {name: 0.0 for name in teeth}
+    for a, b in mesh_pairs(mech):
+        pa = GearPose(a, poses[a].carrier, poses[a].centre, poses[a].angle + clock[a])
+        err = _phase(pa, teeth[a].teeth, poses[b], teeth[b].teeth)
+        clock[b] = (err * TAU / teeth[b].teeth) % (TAU / teeth[b].teeth)
+    return clock
+
+
+def gear_poses(mech: Mechanism, theta: float, clock: dict[str, float] | None = None) -> dict[str, GearPose]:
+    """Every gear's pose at crank angle θ, clocked (``clock`` defaults to ``clockings(mech)``)."""
+    clock = clockings(mech) if clock is None else clock
+    return {p.name: GearPose(p.name, p.carrier, p.centre, p.angle + clock[p.name]) for p in _raw_poses(mech, theta)}
+
+
+def mesh_phase_error(mech: Mechanism, theta: float, clock: dict[str, float] | None = None) -> dict[tuple[str, str], float]:
+    """For each meshing pair, how far from interleaved it is at θ, in fractions of a pitch."""
+    teeth = dict(mech.gears)
+    poses = gear_poses(mech, theta, clock)
+    return {(a, b): _phase(poses[a], teeth[a].teeth, poses[b], teeth[b].teeth) for a, b in mesh_pairs(mech)}

@@ -1,0 +1,139 @@
+"""A whole gear-coupled chain: links + the gear stages that couple them + the drive (pure math).
+
+``synthesize`` takes the numbers a config resolved (mm, rad) and returns the design every later
+layer works from: the chain, one ``Stage`` per coupled link, the drive pair, and findings.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..errors import DesignError
+from .curve import FourierCurve
+from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
+from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
+from .synthesis import Chain
+
+__all__ = ["Joints", "PrinterLimits", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
+
+
+@dataclass(frozen=True)
+class Joints:
+    """Axles and fits (mm). Clearances are diametral: hole diameter minus pin diameter."""
+
+    axle_diameter: float
+    running_clearance: float
+    press_clearance: float
+    axial_gap: float
+
+
+@dataclass(frozen=True)
+class PrinterLimits:
+    name: str
+    envelope: tuple[float, float, float]
+    resolution: float
+    min_hole: float
+    min_gear: float
+    min_link: float
+    min_wall: float
+
+
+@dataclass(frozen=True)
+class KitParams:
+    """Everything the geometry needs besides the mechanism (mm, rad, g/mm³)."""
+
+    name: str
+    system: ToothSystem
+    face_width: float
+    plate_thickness: float
+    boss_wall: float
+    hub_wall: float
+    joints: Joints
+    base_thickness: float
+    leg_height: float
+    crank_radius: float
+    pen_diameter: float
+    pen_holder_height: float
+    density: float
+    material: str
+    printer: PrinterLimits
+    drive_teeth: int
+    drive_angle: float
+
+    @property
+    def bore(self) -> float:
+        """Running bore of a gear or plate on an axle, mm."""
+        return self.joints.axle_diameter + self.joints.running_clearance
+
+    @property
+    def min_root_diameter(self) -> float:
+        return self.bore + 2 * self.hub_wall
+
+
+@dataclass(frozen=True)
+class MechanismInputs:
+    """The chain (links in mm/rad), explicit teeth per stage or None for auto, stage margins."""
+
+    chain: Chain
+    teeth: tuple[tuple[int, int, int], ...] | None
+    tip_gap: float
+    idler_reach: float
+    curve: FourierCurve | None = None
+    scale: float = 1.0
+    dropped: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    chain: Chain
+    stages: tuple[Stage, ...]
+    G1: GearSpec
+    drive: GearSpec
+    drive_centre: tuple[float, float]
+    findings: tuple[Finding, ...] = field(default=())
+    curve: FourierCurve | None = None
+    scale: float = 1.0
+    dropped: tuple[str, ...] = ()
+    auto_teeth: bool = True
+
+    @property
+    def gears(self) -> list[tuple[str, GearSpec]]:
+        """Every gear of the kit with its name: drive, G1, then D_j, M_j, G_{j+1} per stage."""
+        out = [("drive", self.drive), ("G1", self.G1)]
+        for s in self.stages:
+            out += [(f"D{s.j}", s.D), (f"M{s.j}", s.M), (f"G{s.j + 1}", s.G)]
+        return out
+
+
+def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
+    """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings."""
+    links = inputs.chain.links
+    if len(links) < 1:
+        raise DesignError("the chain has no links", "links")
+    system = params.system
+    limits = Limits(params.printer.min_gear, params.min_root_diameter, inputs.tip_gap, inputs.idler_reach)
+    findings: list[Finding] = []
+    for j, link in enumerate(links, 1):
+        if link.length < params.printer.min_link - 1e-9:
+            findings.append(Finding("warning", "short-link", f"link {j} ({link.name}) is {link.length:.2f} mm, "
+                                    f"shorter than the printer's smallest link {params.printer.min_link:g} mm",
+                                    f"links[{j - 1}].length_mm"))
+    ratios = eq11_ratios(inputs.chain.speeds)
+    stages = []
+    if inputs.teeth is None:
+        for j, (link, r) in enumerate(zip(links, ratios), 1):
+            stages.append(choose_stage(j, link.length, r, system, limits))
+    else:
+        if len(inputs.teeth) != len(ratios):
+            raise DesignError(f"{len(inputs.teeth)} stages of teeth given for {len(links)} links: "
+                              f"need one per link but the last ({len(ratios)})", "teeth")
+        for j, (link, r, t) in enumerate(zip(links, ratios, inputs.teeth), 1):
+            st = make_stage(j, link.length, r, t, system)
+            stages.append(st)
+            findings += verify_stage(st, limits, f"teeth[{j - 1}]")
+    G1, drive = make_gear(params.drive_teeth, system), make_gear(params.drive_teeth, system)
+    a = centre_distance(G1, drive)
+    drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
+    return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
+                     inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None)

@@ -1,0 +1,160 @@
+"""Write a kit: one binary STL per distinct part in its print orientation, manifest.json, and an
+assembly (GLB) at crank angle 0 — all or nothing (built in a temporary folder, then moved)."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+from ..assembly.kit import Kit
+from ..geometry.parts import Part
+from ..geometry.solid import mesh_arrays
+
+__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "write_kit", "atomic_dir"]
+
+FLIP = np.diag([1.0, -1.0, -1.0, 1.0])  # half a turn about x: prints a part upside down
+
+
+@dataclass(frozen=True)
+class PrintedPart:
+    """A part as printed: its STL bytes, the mesh read back from them and local-from-print pose."""
+
+    part: Part
+    stl: bytes
+    mesh: trimesh.Trimesh
+    local_from_print: np.ndarray
+
+
+def printed(part: Part) -> PrintedPart:
+    """Lay a part on the build plate (flipped if it prints upside down, lowest point at z = 0)."""
+    v, f = mesh_arrays(part.solid)
+    print_from_local = FLIP.copy() if part.print_flip else np.eye(4)
+    v = v @ print_from_local[:3, :3].T
+    print_from_local[2, 3] = -v[:, 2].min()
+    v[:, 2] -= v[:, 2].min()
+    stl = trimesh.exchange.stl.export_stl(trimesh.Trimesh(v, f, process=False))
+    mesh = trimesh.load(trimesh.util.wrap_as_stream(stl), file_type="stl", force="mesh", process=True)
+    return PrintedPart(part, stl, mesh, np.linalg.inv(print_from_local))
+
+
+def group_parts(items: list[PrintedPart]) -> list[list[PrintedPart]]:
+    """Identical STLs (same bytes) are one distinct part printed ``count`` times; first-seen order."""
+    groups: dict[str, list[PrintedPart]] = {}
+    for it in items:
+        groups.setdefault(hashlib.sha256(it.stl).hexdigest(), []).append(it)
+    return list(groups.values())
+
+
+def _r(x, nd=6):
+    return float(round(float(x), nd))
+
+
+def _gear_entry(part: Part) -> dict:
+    g = part.gear
+    s = g.system
+    return {
+        "teeth": g.teeth,
+        "module_mm": s.module,
+        "pressure_angle_deg": _r(math.degrees(s.pressure_angle), 9),
+        "profile_shift": _r(g.profile_shift, 9),
+        "tooth_thickness_mm": _r(g.tooth_thickness, 9),
+        "tip_diameter_mm": _r(2 * g.tip_radius, 9),
+        "root_diameter_mm": _r(2 * g.root_radius, 9),
+        "backlash_per_gear_mm": s.backlash_per_gear,
+        "undercut": bool(g.undercut),
+        "clocking_deg": _r(math.degrees(part.clocking), 6),
+    }
+
+
+def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
+    """The manifest of a kit: {"design": ..., "parts": [...]}; placements at crank angle 0."""
+    poses = kit.poses(0.0)
+    density = kit.params.density
+    parts = []
+    for grp in groups:
+        first = grp[0]
+        m = first.mesh
+        entry = {
+            "name": first.part.name,
+            "role": first.part.role,
+            "count": len(grp),
+            "instances": [it.part.name for it in grp],
+            "file": f"{first.part.name}.stl",
+            "triangles": int(len(m.faces)),
+            "volume_mm3": _r(m.volume, 4),
+            "mass_g": _r(m.volume * density, 4),
+            "bbox_mm": [_r(x, 4) for x in m.extents],
+            "print_flip": first.part.print_flip,
+            "placement": [[[_r(x, 9) for x in row] for row in poses[it.part.name] @ it.local_from_print] for it in grp],
+        }
+        if first.part.gear is not None:
+            entry["gear"] = _gear_entry(first.part)
+        parts.append(entry)
+    return {"design": design, "parts": parts}
+
+
+def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], theta: float = 0.0) -> bytes:
+    """A GLB scene of every part at crank angle θ (one node per instance, meshes shared)."""
+    poses = kit.poses(theta)
+    scene = trimesh.Scene()
+    for grp in groups:
+        geom_name = grp[0].part.name
+        for it in grp:
+            scene.add_geometry(grp[0].mesh, node_name=it.part.name, geom_name=geom_name,
+                               transform=poses[it.part.name] @ it.local_from_print)
+    return scene.export(file_type="glb")
+
+
+class atomic_dir:
+    """Context manager: a temporary folder beside ``dest`` that replaces ``dest`` on success and
+    vanishes on failure, so ``dest`` is either the old kit or the whole new one."""
+
+    def __init__(self, dest: Path):
+        self.dest = Path(dest)
+
+    def __enter__(self) -> Path:
+        self.dest.parent.mkdir(parents=True, exist_ok=True)
+        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.dest.name}.tmp-", dir=self.dest.parent))
+        return self.tmp
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is not None:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+            return False
+        old = None
+        if self.dest.exists():
+            old = self.dest.parent / f".{self.dest.name}.old-{os.getpid()}"
+            os.replace(self.dest, old)
+        os.replace(self.tmp, self.dest)
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+        return False
+
+
+def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] | None = None,
+              progress=None) -> dict:
+    """Write the kit into ``dest`` atomically; returns the manifest."""
+    say = progress or (lambda name: None)
+    items = []
+    for p in kit.parts:
+        say(p.name)
+        items.append(printed(p))
+    groups = group_parts(items)
+    man = manifest(kit, groups, design)
+    files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
+    files["manifest.json"] = (json.dumps(man, indent=1) + "\n").encode()
+    files["assembly.glb"] = assembly_glb(kit, groups)
+    files.update(extra_files or {})
+    with atomic_dir(dest) as tmp:
+        for name, data in files.items():
+            (tmp / name).write_bytes(data)
+    return man

@@ -1,0 +1,57 @@
+"""manifold3d solids from shapely outlines; the one bridge between the 2-D and 3-D kernels."""
+
+from __future__ import annotations
+
+import numpy as np
+import manifold3d as m3d
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+__all__ = ["cross_section", "extrude", "union", "prisms", "mesh_arrays"]
+
+
+def _rings(geom) -> list[np.ndarray]:
+    polys = geom.geoms if isinstance(geom, MultiPolygon) else [geom]
+    out = []
+    for p in polys:
+        if p.is_empty:
+            continue
+        p = shapely.geometry.polygon.orient(p, 1.0)
+        out.append(np.asarray(p.exterior.coords)[:-1])
+        out += [np.asarray(r.coords)[:-1] for r in p.interiors]
+    return out
+
+
+def cross_section(geom: Polygon | MultiPolygon | np.ndarray) -> m3d.CrossSection:
+    """A CrossSection of a shapely (multi)polygon or of one (n, 2) ccw contour, mm."""
+    contours = [np.asarray(geom, dtype=float)] if isinstance(geom, np.ndarray) else _rings(geom)
+    return m3d.CrossSection(contours, m3d.FillRule.EvenOdd)
+
+
+def extrude(geom, height: float, z0: float = 0.0) -> m3d.Manifold:
+    """Prism of the outline from z0 to z0 + height, mm."""
+    cs = geom if isinstance(geom, m3d.CrossSection) else cross_section(geom)
+    return m3d.Manifold.extrude(cs, height).translate((0.0, 0.0, z0))
+
+
+SLIVER = 1e-6  # mm: edges shorter than this, left where solids meet face to face, are collapsed
+
+
+def union(solids) -> m3d.Manifold:
+    """Union of solids. Solids stacked face to face leave vertices ~1e-9 mm apart, which merge
+    into non-manifold edges once written as float32 STL; collapsing edges under SLIVER fixes it."""
+    solids = list(solids)
+    if len(solids) == 1:
+        return solids[0]
+    return m3d.Manifold.batch_boolean(solids, m3d.OpType.Add).simplify(SLIVER)
+
+
+def mesh_arrays(solid: m3d.Manifold) -> tuple[np.ndarray, np.ndarray]:
+    """vertices (n, 3) float64 mm and faces (m, 3) int64 of a solid."""
+    mesh = solid.to_mesh64() if hasattr(solid, "to_mesh64") else solid.to_mesh()
+    return np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3], np.asarray(mesh.tri_verts, dtype=np.int64)
+
+
+def prisms(items) -> m3d.Manifold:
+    """Union of prisms; items: iterable of (outline, z0, z1) with z1 > z0, mm."""
+    return union([extrude(g, z1 - z0, z0) for g, z0, z1 in items])

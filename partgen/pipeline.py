@@ -1,0 +1,119 @@
+"""The whole job, layer by layer: config → design → geometry/assembly → export.
+
+``load`` and ``build`` raise ``ConfigError`` (file + key path) for anything the user can fix; the
+CLI turns those into exit code 2.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .assembly.kit import Kit, build_kit
+from .config.loader import load_design
+from .config.resolve import resolve
+from .design.drivetrain import Finding
+from .design.mechanism import KitParams, Mechanism, synthesize
+from .errors import ConfigError, DesignError
+from .export.kit import write_kit
+from .geometry.solid import mesh_arrays
+
+__all__ = ["Loaded", "load", "build", "design_summary", "oversize_parts"]
+
+
+@dataclass(frozen=True)
+class Loaded:
+    path: Path
+    mechanism: Mechanism
+    params: KitParams
+
+
+def load(path: str | Path) -> Loaded:
+    """Read, validate and synthesize a design; ConfigError for any user error."""
+    loaded = load_design(path)
+    inputs, params = resolve(loaded)
+    try:
+        mech = synthesize(inputs, params)
+    except DesignError as e:
+        raise ConfigError(loaded.path, e.key_path, e.problem) from None
+    return Loaded(loaded.path, mech, params)
+
+
+def _size_key(kit: Kit, name: str) -> str:
+    mech = kit.mechanism
+    if name.startswith("B"):
+        j = int(name[1:])
+        return "curve.scale_mm_per_unit" if mech.curve is not None else f"links[{j - 1}].length_mm"
+    if name in ("G1", "drive"):
+        return "drive.teeth"
+    if name[0] in "DMG" and name[1:].isdigit():
+        j = int(name[1:]) - (1 if name[0] == "G" else 0)
+        return "teeth" if mech.auto_teeth else f"teeth[{j - 1}].{name[0]}"
+    return {"base": "base", "crank": "base.crank_radius_mm", "pen_holder": "pen"}.get(name, name)
+
+
+def oversize_parts(kit: Kit) -> list[tuple[str, str, np.ndarray]]:
+    """Parts whose extents (any axis order) exceed the printer envelope: (name, key, extents)."""
+    env = np.sort(np.asarray(kit.params.printer.envelope, dtype=float))
+    out = []
+    for p in kit.parts:
+        v, _ = mesh_arrays(p.solid)
+        ext = np.sort(v.max(axis=0) - v.min(axis=0))
+        if np.any(ext > env + 1e-9):
+            out.append((p.name, _size_key(kit, p.name), ext))
+    return out
+
+
+def design_summary(loaded: Loaded, kit: Kit) -> dict:
+    """The manifest's "design" entry: chain, stages, drive, stack, findings."""
+    mech, params = loaded.mechanism, loaded.params
+    r6 = lambda x: float(round(float(x), 6))
+    return {
+        "name": params.name,
+        "config": loaded.path.name,
+        "printer": params.printer.name,
+        "material": params.material,
+        "density_g_cm3": r6(params.density * 1000),
+        "crank_angle_rad": 0.0,
+        "module_mm": params.system.module,
+        "pressure_angle_deg": r6(math.degrees(params.system.pressure_angle)),
+        "teeth_mode": "auto" if mech.auto_teeth else "explicit",
+        "ground_offset_mm": [r6(mech.chain.offset.real), r6(mech.chain.offset.imag)],
+        "links": [{"j": j, "name": l.name, "speed": l.speed, "length_mm": r6(l.length),
+                   "initial_angle_deg": r6(math.degrees(l.phase))} for j, l in enumerate(mech.chain.links, 1)],
+        "stages": [{"j": s.j, "ratio": str(s.ratio), "teeth": {"D": s.D.teeth, "M": s.M.teeth, "G": s.G.teeth},
+                    "profile_shift": {"D": r6(s.D.profile_shift), "M": r6(s.M.profile_shift), "G": r6(s.G.profile_shift)},
+                    "a_DM_mm": r6(s.a_DM), "a_MG_mm": r6(s.a_MG),
+                    "idler_mm": [r6(s.idler[0]), r6(s.idler[1])]} for s in mech.stages],
+        "drive": {"teeth": mech.drive.teeth, "centre_mm": [r6(c) for c in mech.drive_centre]},
+        "stack_mm": {"axial_gap": kit.stack.gap, "face_width": kit.stack.face, "plate": kit.stack.plate,
+                     "layers": [r6(kit.stack.layer(j)) for j in range(len(mech.stages) + 1)],
+                     "plates": [r6(kit.stack.plate_z(j)) for j in range(1, len(mech.chain.links) + 1)]},
+        "findings": [finding_dict(f) for f in mech.findings],
+    }
+
+
+def finding_dict(f: Finding) -> dict:
+    return {"severity": f.severity, "code": f.code, "key": f.key_path, "message": f.message}
+
+
+def build(path: str | Path, dest: str | Path | None = None, progress=None) -> tuple[Loaded, Kit, dict, Path]:
+    """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made."""
+    loaded = load(path)
+    try:
+        kit = build_kit(loaded.mechanism, loaded.params, progress)
+    except DesignError as e:
+        raise ConfigError(loaded.path, e.key_path, e.problem) from None
+    big = oversize_parts(kit)
+    if big:
+        name, key, ext = big[0]
+        env = " × ".join(f"{x:g}" for x in loaded.params.printer.envelope)
+        raise ConfigError(loaded.path, key, f"part {name} measures {' × '.join(f'{x:.1f}' for x in ext[::-1])} mm "
+                          f"and does not fit the printer's {env} mm envelope in any orientation"
+                          + (f" (and {len(big) - 1} more parts)" if len(big) > 1 else ""))
+    dest = Path(dest) if dest is not None else Path("out") / loaded.params.name
+    man = write_kit(kit, dest, design_summary(loaded, kit), progress=progress)
+    return loaded, kit, man, dest
