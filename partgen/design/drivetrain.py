@@ -143,18 +143,19 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
     n = 1
     while True:
         td, tg = ratio.numerator * n, ratio.denominator * n
+        n += 1
+        if min(td, tg) < zmin:
+            continue
         D, G = make_gear(td, system), make_gear(tg, system)
         if D.tip_radius + G.tip_radius + limits.tip_gap > length:
             break  # Eq 12 fails from here on: every larger n only grows the gears
-        if min(td, tg) >= zmin:
-            for tm in range(zmin, 1000):
-                M = make_gear(tm, system)
-                if centre_distance(D, M) + centre_distance(M, G) >= length + limits.idler_reach:
-                    key = (max(td, tm, tg), td + tm + tg)
-                    if best_key is None or key < best_key:
-                        best, best_key = (td, tm, tg), key
-                    break
-        n += 1
+        for tm in range(zmin, 1000):
+            M = make_gear(tm, system)
+            if centre_distance(D, M) + centre_distance(M, G) >= length + limits.idler_reach:
+                key = (max(td, tm, tg), td + tm + tg)
+                if best_key is None or key < best_key:
+                    best, best_key = (td, tm, tg), key
+                break
     if best is None:
         raise DesignError(
             f"link {j} (S = {length:.3f} mm): no whole teeth give the Eq 11 ratio {ratio} with D and G "
