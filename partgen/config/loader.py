@@ -3,6 +3,7 @@ naming the file, the key path and the problem."""
 
 from __future__ import annotations
 
+import difflib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
@@ -64,7 +65,7 @@ def key_path(loc: tuple, data: Any) -> str:
     return out
 
 
-def _describe(err: dict, data: Any) -> tuple[str, str]:
+def _describe(err: dict, data: Any, errors: list[dict]) -> tuple[str, str]:
     path = key_path(tuple(err["loc"]), data)
     msg = err["msg"]
     if msg.startswith("Value error, "):
@@ -72,25 +73,38 @@ def _describe(err: dict, data: Any) -> tuple[str, str]:
     if err["type"] == "missing":
         return path, "required key is missing"
     if err["type"] == "extra_forbidden":
-        return path, "unknown key (not part of the schema; check its spelling)"
+        # a misspelt key: suggest the missing sibling it was probably meant to be
+        parent = tuple(err["loc"][:-1])
+        missing = [str(e["loc"][-1]) for e in errors if e["type"] == "missing" and tuple(e["loc"][:-1]) == parent]
+        close = difflib.get_close_matches(str(err["loc"][-1]), missing, n=1, cutoff=0.6)
+        hint = f"; did you mean '{close[0]}'?" if close else " (not part of the schema; check its spelling)"
+        return path, "unknown key" + hint
     got = err.get("input")
     if not isinstance(got, (dict, list)):
         msg += f", got {got!r}"
     return path, msg
 
 
+def _rank(err: dict, data: Any) -> tuple:
+    """Unknown keys first (a typo explains the 'missing' it causes), then the deepest key."""
+    return (err["type"] != "extra_forbidden", -key_path(tuple(err["loc"]), data).count(".")
+            - key_path(tuple(err["loc"]), data).count("["))
+
+
 def validate(model: type[M], data: dict, path: Path) -> M:
-    """``model`` from ``data``; the first error becomes a ConfigError with its key path."""
+    """``model`` from ``data``; the most telling error becomes a ConfigError with its key path."""
     try:
         return model.model_validate(data)
     except ValidationError as e:
-        errors = e.errors()
-        # prefer errors inside the input over union-alternative noise: the deepest path first
-        errors.sort(key=lambda er: -len(key_path(tuple(er["loc"]), data)))
-        key, problem = _describe(errors[0], data)
-        more = len({key_path(tuple(er["loc"]), data) for er in errors}) - 1
-        if more > 0:
-            problem += f" (and {more} more problem{'s' if more > 1 else ''})"
+        errors = sorted(e.errors(), key=lambda er: _rank(er, data))
+        key, problem = _describe(errors[0], data, errors)
+        # other problems, not counting the alternatives of a union the first error lies inside
+        others = {key_path(tuple(er["loc"]), data) for er in errors} - {key}
+        others = {o for o in others if not (key.startswith(o) and key[len(o):len(o) + 1] in ".[")}
+        if errors[0]["type"] == "extra_forbidden" and "did you mean" in problem:
+            others -= {key.rsplit(".", 1)[0] + "." + problem.split("'")[1]}
+        if others:
+            problem += f" (and {len(others)} more problem{'s' if len(others) > 1 else ''})"
         raise ConfigError(path, key, problem) from None
 
 

@@ -124,6 +124,9 @@ class atomic_dir:
     def __enter__(self) -> Path:
         self.dest.parent.mkdir(parents=True, exist_ok=True)
         self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.dest.name}.tmp-", dir=self.dest.parent))
+        umask = os.umask(0)  # mkdtemp makes 0700; give the kit the mode a plain mkdir would
+        os.umask(umask)
+        os.chmod(self.tmp, 0o777 & ~umask)
         return self.tmp
 
     def __exit__(self, exc_type, exc, tb):
