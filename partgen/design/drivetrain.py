@@ -149,7 +149,10 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
         D, G = make_gear(td, system), make_gear(tg, system)
         if D.tip_radius + G.tip_radius + limits.tip_gap > length:
             break  # Eq 12 fails from here on: every larger n only grows the gears
-        for tm in range(zmin, 1000):
+        # the reach grows with T_M by about one module per tooth: start a little under the
+        # unshifted estimate m/2 (T_D + 2 T_M + T_G) = S + reach instead of at zmin
+        guess = math.floor(((length + limits.idler_reach) * 2 / system.module - td - tg) / 2) - 3
+        for tm in range(max(zmin, guess), 1000):
             M = make_gear(tm, system)
             if centre_distance(D, M) + centre_distance(M, G) >= length + limits.idler_reach:
                 key = (max(td, tm, tg), td + tm + tg)

@@ -41,8 +41,9 @@ def printed(part: Part) -> PrintedPart:
     v = v @ print_from_local[:3, :3].T
     print_from_local[2, 3] = -v[:, 2].min()
     v[:, 2] -= v[:, 2].min()
-    stl = trimesh.exchange.stl.export_stl(trimesh.Trimesh(v, f, process=False))
-    mesh = trimesh.load(trimesh.util.wrap_as_stream(stl), file_type="stl", force="mesh", process=True)
+    # the mesh exactly as the STL stores it (float32), so the manifest describes the file
+    mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
+    stl = trimesh.exchange.stl.export_stl(mesh)
     return PrintedPart(part, stl, mesh, np.linalg.inv(print_from_local))
 
 
