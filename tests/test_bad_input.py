@@ -129,10 +129,9 @@ CASES = [
     Case("unknown_top_level_key", design(_default, lambda d: d.update(colour="red")), "colour", ["unknown key"]),
     Case("unknown_nested_key", design(_default, _set("gears", "modul_mm", 1.25)), "gears.modul_mm", ["unknown key"]),
     # A real typo renames the key: the message must name the key in the file that has to change
-    # (gears.modul_mm). partgen reports `gears.module_mm: required key is missing (and 1 more
-    # problem)` instead, because it sorts errors by the *string length* of the key path.
+    # (gears.modul_mm), not the required key its absence leaves missing.
     Case("typo_nested_key", design(_default, _rename("gears", "module_mm", "modul_mm")), "gears.modul_mm",
-         ["unknown key"]),
+         ["unknown key", "did you mean 'module_mm'"]),
     # --- schema: values
     Case("module_zero", design(_default, _set("gears", "module_mm", 0)), "gears.module_mm"),
     Case("module_negative", design(_default, _set("gears", "module_mm", -1.25)), "gears.module_mm"),
@@ -161,6 +160,10 @@ CASES = [
          ["same speed"]),
     Case("idler_cannot_reach", design(_liu, _teeth(0, "M", 10)), "teeth[0].M"),
     Case("wrong_teeth_rows", design(_liu, lambda d: d["teeth"].pop()), "teeth"),
+    Case("cutter_fillets_overlap", design(_liu, lambda d: d["gears"].update(cutter_tip_radius_coeff=0.6,
+                                                                          pressure_angle_deg=30)),
+         "gears.cutter_tip_radius_coeff", ["overlap"]),
+    Case("pointed_teeth", design(_liu, _set("gears", "profile_shift", 1.5)), "gears.profile_shift", ["pointed"]),
     # --- found while building the geometry (slow: ~1 s each)
     Case("legs_too_short", design(_default, _set("base", "leg_height_mm", 5.0)), "base.leg_height_mm"),
     Case("part_larger_than_printer", design(_default, _set("curve", "scale_mm_per_unit", 60.0)),

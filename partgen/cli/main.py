@@ -1,12 +1,14 @@
 """partgen's command line: ``main(argv=None) -> int``; one module per subcommand.
 
-Exit codes: 0 ok, 1 a check failed, 2 bad input (the message names the file and the key path).
+Exit codes: 0 ok, 1 a check failed, 2 bad input (the message names the file and the key path),
+3 an internal error (a bug: the traceback is shown).
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+import traceback
 
 from ..errors import PartgenError
 from . import build as build_cmd
@@ -35,6 +37,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("partgen: interrupted", file=sys.stderr)
         return 130
+    except Exception:  # a bug in partgen, not the user's input: show it, exit 3
+        traceback.print_exc()
+        print("partgen: internal error (a bug in partgen, not in your design); please report it", file=sys.stderr)
+        return 3
 
 
 def entry() -> None:

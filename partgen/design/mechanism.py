@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..errors import DesignError
+from . import involute
 from .curve import FourierCurve
 from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
@@ -106,6 +107,21 @@ class Mechanism:
         return out
 
 
+def check_generable(gear: GearSpec) -> None:
+    """Raise DesignError (naming the config key) if the rack cannot generate this gear: cutter tip
+    fillets that overlap, a tip inside the base circle, a pointed tooth."""
+    s = gear.system
+    try:
+        involute.gear_outline(gear.teeth, s.module, s.pressure_angle, gear.profile_shift, s.backlash_per_gear,
+                              s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05)
+    except ValueError as e:
+        msg = str(e)
+        key = ("gears.cutter_tip_radius_coeff" if msg.startswith("rho") else
+               "gears.profile_shift" if "pointed" in msg else "gears.addendum_coeff" if msg.startswith("ha") else "gears")
+        raise DesignError(f"a {gear.teeth}-tooth gear (x = {gear.profile_shift:.4g}) cannot be generated: {msg}",
+                          key) from None
+
+
 def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings."""
     links = inputs.chain.links
@@ -133,6 +149,10 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
             stages.append(st)
             findings += verify_stage(st, limits, f"teeth[{j - 1}]")
     G1, drive = make_gear(params.drive_teeth, system), make_gear(params.drive_teeth, system)
+    distinct = {(g.teeth, g.profile_shift): g for s in stages for g in (s.D, s.M, s.G)}
+    distinct[(G1.teeth, G1.profile_shift)] = G1
+    for g in distinct.values():
+        check_generable(g)
     a = centre_distance(G1, drive)
     drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
