@@ -117,11 +117,20 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
         solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
         add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
 
+    holes = {"D": post.hole(FEATURE_TOL), "round": P.disc(bore_r, FEATURE_TOL)}
+    bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
+
+    def loose(name: str, spec, hole: str):
+        key = (spec, hole)
+        if key not in bored:
+            bored[key] = P.bored_gear(spec, f, holes[hole])
+        add(Part(name, "gear", bored[key], gear=spec))
+
     fixed("G1", mech.G1)
-    add(Part("drive", "gear", P.bored_gear(mech.drive, f, post.hole(FEATURE_TOL)), gear=mech.drive))
+    loose("drive", mech.drive, "D")
     for s in mech.stages:
-        add(Part(f"D{s.j}", "gear", P.bored_gear(s.D, f, post.hole(FEATURE_TOL)), gear=s.D))
-        add(Part(f"M{s.j}", "gear", P.bored_gear(s.M, f, P.disc(bore_r, FEATURE_TOL)), gear=s.M))
+        loose(f"D{s.j}", s.D, "D")
+        loose(f"M{s.j}", s.M, "round")
         fixed(f"G{s.j + 1}", s.G)
 
     # link plates

@@ -148,10 +148,13 @@ def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] 
               progress=None) -> dict:
     """Write the kit into ``dest`` atomically; returns the manifest."""
     say = progress or (lambda name: None)
-    items = []
+    items, done = [], {}
     for p in kit.parts:
         say(p.name)
-        items.append(printed(p))
+        key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
+        if key not in done:
+            done[key] = printed(p)
+        items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
     man = manifest(kit, groups, design)
     files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
