@@ -127,3 +127,17 @@ def test_default_kit_has_no_warnings_and_paper_kit_has_its_eq12_defect(built_kit
     paper = built_kits["butterfly_liu2017"][2]["design"]["findings"]
     assert not [f for f in default if f["severity"] == "warning"]
     assert [f for f in paper if f["severity"] == "warning" and f["code"] == "eq12"]
+
+
+def test_stacking_figure_renders(built_kits, tmp_path):
+    """The README's section picture is drawn from the kit's meshes without a display."""
+    from PIL import Image
+
+    from partgen.export.plots import stack_section
+    _, built, _, _ = built_kits["butterfly"]
+    out = tmp_path / "stack.png"
+    stack_section(built, out)
+    img = Image.open(out)
+    assert img.size[0] > 1000 and img.size[1] > 500
+    colours = {c for _, c in img.convert("RGB").getcolors(1 << 20)}
+    assert (0x4c, 0x78, 0xa8) in colours and (0xf5, 0x85, 0x18) in colours  # gears and plates were drawn

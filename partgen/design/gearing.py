@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from . import involute
@@ -85,12 +84,3 @@ def centre_distance(a: GearSpec, b: GearSpec) -> float:
     """Operating centre distance of a mesh of two gears with zero-backlash geometry, mm."""
     s = a.system
     return involute.centre_distance(a.teeth, b.teeth, s.module, s.pressure_angle, a.profile_shift, b.profile_shift)
-
-
-def pitch_diameter(teeth: int, module: float) -> float:
-    return module * teeth
-
-
-def teeth_for_diameter(diameter: float, module: float) -> int:
-    """Smallest tooth count whose reference pitch diameter reaches ``diameter``."""
-    return max(1, math.ceil(diameter / module - 1e-9))

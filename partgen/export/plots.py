@@ -13,10 +13,10 @@ import trimesh  # noqa: E402
 from matplotlib.patches import Polygon as MplPolygon  # noqa: E402
 
 from ..assembly.kit import Kit, build_kit  # noqa: E402
-from ..design.synthesis import Chain, trace  # noqa: E402
+from ..design.synthesis import Chain  # noqa: E402
 from ..geometry.solid import mesh_arrays  # noqa: E402
 
-__all__ = ["stack_section", "top_view", "ROLE_COLOURS"]
+__all__ = ["stack_section", "ROLE_COLOURS"]
 
 ROLE_COLOURS = {"gear": "#4c78a8", "link": "#f58518", "base": "#8c8c8c", "leg": "#b0b0b0", "axle": "#54a24b",
                 "crank": "#e45756", "pen_holder": "#b279a2"}
@@ -82,31 +82,4 @@ def stack_section(kit: Kit, path, title: str | None = None) -> None:
     fig.suptitle(title or f"{kit.params.name}: true section through the joints (links straightened, crank angle 0)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
-    plt.close(fig)
-
-
-def top_view(kit: Kit, path, theta: float = 0.0) -> None:
-    """Plan view at crank angle θ: every part's outline at its mid-height, and the pen's path."""
-    fig, ax = plt.subplots(figsize=(9, 9))
-    order = sorted(_posed(kit, theta), key=lambda pm: pm[1].bounds[1][2])
-    for part, mesh in order:
-        z = mesh.bounds.mean(axis=0)[2]
-        sec = mesh.section(plane_origin=[0, 0, z], plane_normal=[0, 0, 1])
-        if sec is None:
-            continue
-        for ring in sec.discrete:
-            ax.add_patch(MplPolygon(np.asarray(ring)[:, :2], closed=True, facecolor=ROLE_COLOURS.get(part.role, "#999"),
-                                    edgecolor="k", linewidth=0.3, alpha=0.55))
-    mech = kit.mechanism
-    t = np.linspace(0, 2 * np.pi, 2000)
-    pen = trace(mech.chain, t) - mech.chain.offset
-    ax.plot(pen.real, pen.imag, color="#222", lw=1.2, label="pen path (one crank turn)")
-    ax.set_aspect("equal")
-    ax.autoscale_view()
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    ax.set_title(f"{kit.params.name} at crank angle {np.degrees(theta):.0f}°, seen from above")
-    ax.legend(loc="upper right")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
     plt.close(fig)

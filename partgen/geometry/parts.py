@@ -11,7 +11,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import manifold3d as m3d
-import numpy as np
 import shapely
 from shapely import affinity
 from shapely.geometry import Polygon
@@ -143,7 +142,3 @@ def translate2d(geom: Polygon, dx: float, dy: float) -> Polygon:
 
 def union2d(geoms) -> Polygon:
     return shapely.union_all(list(geoms))
-
-
-def as_array(geom: Polygon) -> np.ndarray:
-    return np.asarray(geom.exterior.coords)[:-1]
