@@ -22,7 +22,7 @@ from ..errors import DesignError
 from ..geometry import parts as P
 from ..geometry.parts import DFit, Part
 
-__all__ = ["Stack", "Kit", "build_kit"]
+__all__ = ["Stack", "Contact", "Kit", "build_kit"]
 
 FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
 CRANK_THICKNESS = 6.0
@@ -52,6 +52,22 @@ class Stack:
         return self.layer(j - 1) + self.face + self.gap
 
 
+@dataclass(frozen=True)
+class Contact:
+    """Two parts meant to touch, and how (radial clearances, mm, are design values).
+
+    kind: "running" (turns on it, radial gap = running clearance / 2), "press" (D-fit, gap =
+    press clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh).
+    window: world z-range where the fit is (the bore's length), None for thrust and mesh.
+    """
+
+    a: str
+    b: str
+    kind: str
+    window: tuple[float, float] | None = None
+    radial_gap: float = 0.0
+
+
 def _T(x: float = 0.0, y: float = 0.0, z: float = 0.0, angle: float = 0.0) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[c, -s, 0, x], [s, c, 0, y], [0, 0, 1, z], [0, 0, 0, 1]], dtype=float)
@@ -67,6 +83,7 @@ class Kit:
     parts: tuple[Part, ...]
     static: dict = field(default_factory=dict)  # name -> (4, 4) pose of parts fixed to the base
     clock: dict = field(default_factory=dict)
+    contacts: tuple[Contact, ...] = ()
 
     def part(self, name: str) -> Part:
         return next(p for p in self.parts if p.name == name)
@@ -101,7 +118,8 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
     ra = jn.axle_diameter / 2
     bore_r = params.bore / 2
     post = DFit(ra, jn.press_clearance)
-    boss = DFit(bore_r + params.hub_wall / 2, jn.press_clearance)
+    # G's D-boss: the wall under its flat is half the hub wall (the flat cuts FLAT_DEPTH deep)
+    boss = DFit(bore_r + P.FLAT_DEPTH + params.hub_wall / 2, jn.press_clearance)
     rb = boss.radius
     n = len(mech.chain.links)
     clock = clockings(mech)
@@ -117,7 +135,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
         solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
         add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
 
-    holes = {"D": post.hole(FEATURE_TOL), "round": P.disc(bore_r, FEATURE_TOL)}
+    holes = {"D": post.hole(FEATURE_TOL), "round": P.disc(bore_r, FEATURE_TOL, hole=True)}
     bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
 
     def loose(name: str, spec, hole: str):
@@ -171,7 +189,8 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
                           f"(needs {crank_depth + 3.0:g} mm)", "base.leg_height_mm")
     outline = P.hull_of_discs([((0.0, 0.0), ra + params.boss_wall + 4.0), ((dx, dy), rb + params.boss_wall)]
                               + [(c, LEG_R + 2.0) for c in legs], FEATURE_TOL)
-    holes = [P.disc(bore_r, FEATURE_TOL, (dx, dy))] + [P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c) for c in legs]
+    holes = [P.disc(bore_r, FEATURE_TOL, (dx, dy), hole=True)] + [P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c, hole=True)
+                                                                   for c in legs]
     outline = outline.difference(P.union2d(holes))
     top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
     feats = [(P.annulus(ra, rb, FEATURE_TOL), 0.0, g), (P.disc(ra, FEATURE_TOL), 0.0, top1),
@@ -179,7 +198,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
     if n > 1:
         feats.append((post.shaft(FEATURE_TOL), top1, top1 + f))
     add(Part("base", "base", P.base_plate(outline, bt, feats)))
-    leg_solid = P.leg(LEG_R, params.leg_height, ra - jn.press_clearance / 2, bt, FEATURE_TOL)
+    leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
     for i in range(len(legs)):
         add(Part(f"leg{i + 1}", "leg", leg_solid))
     zc = -bt - g
@@ -191,6 +210,31 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
                                                       params.pen_diameter / 2 + 0.1, 2.0, FEATURE_TOL),
              print_flip=True))
 
+    contacts = _contacts(mech, params, st, len(legs))
     static = {"base": _T()}
     static.update({f"leg{i + 1}": _T(c[0], c[1], -bt) for i, c in enumerate(legs)})
-    return Kit(mech, params, st, tuple(parts), static, clock)
+    return Kit(mech, params, st, tuple(parts), static, clock, contacts)
+
+
+def _contacts(mech: Mechanism, params: KitParams, st: Stack, n_legs: int) -> tuple[Contact, ...]:
+    """Every pair of parts the design means to touch: fits on axles, D-fits, thrust faces, meshes."""
+    g, f, t = st.gap, st.face, st.plate
+    run, press = params.joints.running_clearance / 2, params.joints.press_clearance / 2
+    bt = params.base_thickness
+    n = len(mech.chain.links)
+    body = lambda j: (st.layer(j), st.layer(j) + f)  # noqa: E731
+    plate = lambda j: (st.plate_z(j), st.plate_z(j) + t)  # noqa: E731
+    out = [Contact("G1", "base", "running", body(0), run), Contact("G1", "B1", "press", plate(1), press),
+           Contact("G1", "drive", "mesh"), Contact("drive", "drive_axle", "press", body(0), press),
+           Contact("drive", "base", "thrust"), Contact("drive_axle", "base", "running", (-bt, 0.0), run),
+           Contact("crank", "drive_axle", "press", (-bt - g - 6.0, -bt - g), press),
+           Contact("pen_holder", f"B{n}", "press", plate(n), press)]
+    out += [Contact(f"leg{i + 1}", "base", "press", (-bt, 0.0), press) for i in range(n_legs)]
+    for s in mech.stages:
+        j = s.j
+        carrier = "base" if j == 1 else f"B{j - 1}"
+        out += [Contact(f"D{j}", carrier, "press", body(j), press), Contact(f"D{j}", f"G{j}", "thrust"),
+                Contact(f"M{j}", f"B{j}", "running", body(j), run), Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
+                Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
+                Contact(f"D{j}", f"M{j}", "mesh"), Contact(f"M{j}", f"G{j + 1}", "mesh")]
+    return tuple(out)

@@ -7,7 +7,7 @@ import math
 
 from ..design import curve as curves
 from ..design.gearing import ToothSystem
-from ..design.mechanism import Joints, KitParams, MechanismInputs, PrinterLimits
+from ..design.mechanism import CheckSettings, Joints, KitParams, MechanismInputs, PrinterLimits
 from ..design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ..errors import ConfigError
 from .loader import LoadedDesign
@@ -76,5 +76,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
                               p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm),
         drive_teeth=d.drive.teeth,
         drive_angle=math.radians(d.drive.angle_deg),
+        checks=CheckSettings(d.checks.samples, d.checks.interference_tolerance_mm3, d.checks.min_clearance_mm,
+                             d.checks.min_contact_ratio, d.checks.min_tip_width_roads, d.checks.plate_margin_mm),
     )
     return inputs, params

@@ -151,6 +151,17 @@ class Pen(Strict):
     holder_height_mm: Pos = 20.0
 
 
+class Checks(Strict):
+    """What `partgen check` holds a kit to."""
+
+    samples: Annotated[int, Field(ge=4, le=100000)] = 360
+    interference_tolerance_mm3: NonNeg = 0.001
+    min_clearance_mm: NonNeg = 0.3
+    min_contact_ratio: Pos = 1.2
+    min_tip_width_roads: Pos = 3.0
+    plate_margin_mm: NonNeg = 5.0
+
+
 class Material(Strict):
     name: str
     density_g_cm3: Pos
@@ -170,6 +181,7 @@ class Design(Strict):
     joints: Joints
     base: Base = Base()
     pen: Pen = Pen()
+    checks: Checks = Checks()
     material: Material
 
     @model_validator(mode="after")

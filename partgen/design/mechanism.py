@@ -16,7 +16,7 @@ from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .synthesis import Chain
 
-__all__ = ["Joints", "PrinterLimits", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
+__all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
 
 
 @dataclass(frozen=True)
@@ -41,6 +41,18 @@ class PrinterLimits:
 
 
 @dataclass(frozen=True)
+class CheckSettings:
+    """What `partgen check` holds a kit to (mm, mm³)."""
+
+    samples: int = 360
+    interference_tolerance: float = 0.001
+    min_clearance: float = 0.3
+    min_contact_ratio: float = 1.2
+    min_tip_width_roads: float = 3.0
+    plate_margin: float = 5.0
+
+
+@dataclass(frozen=True)
 class KitParams:
     """Everything the geometry needs besides the mechanism (mm, rad, g/mm³)."""
 
@@ -61,6 +73,7 @@ class KitParams:
     printer: PrinterLimits
     drive_teeth: int
     drive_angle: float
+    checks: CheckSettings = CheckSettings()
 
     @property
     def bore(self) -> float:

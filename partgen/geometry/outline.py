@@ -23,22 +23,25 @@ def segments_for(radius: float, tol: float, minimum: int = 16) -> int:
     return max(minimum, math.ceil(math.pi / math.acos(1 - tol / radius)))
 
 
-def circle_points(radius: float, tol: float, centre: Sequence[float] = (0.0, 0.0)) -> np.ndarray:
-    """(n, 2) float, mm: counter-clockwise vertices on a circle (vertices lie on it exactly)."""
+def circle_points(radius: float, tol: float, centre: Sequence[float] = (0.0, 0.0), hole: bool = False) -> np.ndarray:
+    """(n, 2) float, mm: counter-clockwise vertices of a circle. A solid's vertices lie on the
+    circle; a ``hole``'s polygon circumscribes it (its edges touch the circle), so a hole is
+    never smaller than its nominal size and a fit never tighter than designed."""
     n = segments_for(radius, tol)
     t = 2 * np.pi * np.arange(n) / n
-    return np.column_stack([centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t)])
+    r = radius / np.cos(np.pi / n) if hole else radius
+    return np.column_stack([centre[0] + r * np.cos(t), centre[1] + r * np.sin(t)])
 
 
-def circle(radius: float, tol: float, centre: Sequence[float] = (0.0, 0.0)) -> Polygon:
-    return Polygon(circle_points(radius, tol, centre))
+def circle(radius: float, tol: float, centre: Sequence[float] = (0.0, 0.0), hole: bool = False) -> Polygon:
+    return Polygon(circle_points(radius, tol, centre, hole))
 
 
-def d_shape(radius: float, flat: float, tol: float, centre: Sequence[float] = (0.0, 0.0)) -> Polygon:
+def d_shape(radius: float, flat: float, tol: float, centre: Sequence[float] = (0.0, 0.0), hole: bool = False) -> Polygon:
     """Circle of ``radius`` cut by the line y = cy - ``flat`` (the flat on the -y side)."""
     if not 0 < flat < radius:
         raise ValueError(f"D-shape flat {flat} must lie inside the radius {radius}")
-    c = circle(radius, tol, centre)
+    c = circle(radius, tol, centre, hole)
     keep = box(centre[0] - 2 * radius, centre[1] - flat, centre[0] + 2 * radius, centre[1] + 2 * radius)
     return shapely.intersection(c, keep)
 

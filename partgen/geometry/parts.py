@@ -50,7 +50,7 @@ class DFit:
 
     def hole(self, tol: float) -> Polygon:
         c = self.clearance / 2
-        return d_shape(self.radius + c, self.radius - FLAT_DEPTH + c, tol)
+        return d_shape(self.radius + c, self.radius - FLAT_DEPTH + c, tol, hole=True)
 
 
 def _annulus(r_in: float, r_out: float, tol: float, centre=(0.0, 0.0)) -> Polygon:
@@ -69,7 +69,7 @@ def fixed_gear(spec: GearSpec, face_width: float, bore_radius: float, collar: tu
     the plate's D-hole; one round bore runs through all of it. The boss is turned by -clocking so
     that, with the boss's flat aligned to the plate's, tooth 0 sits at ``clocking``."""
     tol_f = max(tol, 0.005)
-    bore = circle(bore_radius, tol_f)
+    bore = circle(bore_radius, tol_f, hole=True)
     collar_r, collar_h = collar
     boss_shape = affinity.rotate(boss.shaft(tol_f), -clocking, origin=(0, 0), use_radians=True)
     z1 = face_width + collar_h
@@ -121,7 +121,7 @@ def pen_holder(spigot: DFit, spigot_height: float, tube_r: float, height: float,
                tol: float) -> m3d.Manifold:
     """Pen holder: a D-spigot [0, spigot_height] into the last plate, a tube above it holding the
     pen in a blind bore (``floor`` of solid under the pen), pen pointing up."""
-    bore = circle(pen_r, tol)
+    bore = circle(pen_r, tol, hole=True)
     z1 = spigot_height + height
     return prisms([(spigot.shaft(tol), 0.0, spigot_height), (circle(tube_r, tol), spigot_height, spigot_height + floor),
                    (_annulus(pen_r, tube_r, tol), spigot_height + floor, z1)])
@@ -132,8 +132,8 @@ def annulus(r_in: float, r_out: float, tol: float, centre=(0.0, 0.0)) -> Polygon
     return _annulus(r_in, r_out, tol, centre)
 
 
-def disc(radius: float, tol: float, centre=(0.0, 0.0)) -> Polygon:
-    return circle(radius, tol, centre)
+def disc(radius: float, tol: float, centre=(0.0, 0.0), hole: bool = False) -> Polygon:
+    return circle(radius, tol, centre, hole)
 
 
 def translate2d(geom: Polygon, dx: float, dy: float) -> Polygon:

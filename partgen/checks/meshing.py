@@ -1,0 +1,158 @@
+"""Every meshing pair of gears: centre distance, backlash, contact ratio, tip and involute
+interference, and tooth overlap over the motion with the kit's tooth phases.
+
+Gears are prisms over their face width, so the overlap of two gear bodies is the overlap of
+their outlines (the rack-generated ones the parts are extruded from) times the face width.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from shapely.geometry import Point, Polygon, box
+
+from ..assembly.kit import Kit
+from ..design import involute
+from ..design.gearing import centre_distance
+from ..geometry.gear import gear_outline
+from ..geometry.measure import place2d
+from .findings import Finding
+
+__all__ = ["check_meshes"]
+
+
+def _rot(T: np.ndarray, angle: float, centre) -> np.ndarray:
+    """T followed by a turn of ``angle`` about the vertical axis through ``centre`` (world)."""
+    c, s = math.cos(angle), math.sin(angle)
+    R = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+    shift = np.eye(4)
+    shift[:2, 3] = centre
+    back = np.eye(4)
+    back[:2, 3] = -np.asarray(centre)
+    return shift @ R @ back @ T
+
+
+class _Pair:
+    def __init__(self, kit: Kit, a: str, b: str, outlines: dict):
+        self.a, self.b = a, b
+        self.ga, self.gb = kit.part(a).gear, kit.part(b).gear
+        self.oa, self.ob = outlines[self.ga], outlines[self.gb]
+        self.face = kit.params.face_width
+
+    def overlap(self, Ta: np.ndarray, Tb: np.ndarray) -> tuple[float, Point]:
+        """Overlap area (mm²) of the two outlines at these poses, only near the line of centres."""
+        ca, cb = Ta[:2, 3], Tb[:2, 3]
+        d = np.linalg.norm(cb - ca)
+        u = (cb - ca) / d
+        pitch_pt = ca + u * d * self.ga.teeth / (self.ga.teeth + self.gb.teeth)
+        h = 2.5 * self.ga.module
+        window = shapely.affinity.rotate(box(-h, -2.2 * h, h, 2.2 * h), math.atan2(u[1], u[0]), origin=(0, 0),
+                                         use_radians=True)
+        window = shapely.affinity.translate(window, *pitch_pt)
+        A = shapely.intersection(place2d(self.oa, Ta), window)
+        B = shapely.intersection(place2d(self.ob, Tb), window)
+        common = shapely.intersection(A, B)
+        return common.area, common.centroid
+
+
+def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
+    """How far gear b turns (rad, ``direction`` ±1) about its centre before it touches a."""
+    pitch = 2 * math.pi / pair.gb.teeth
+    lo, hi = 0.0, pitch / 2
+    cb = Tb[:2, 3]
+    if pair.overlap(Ta, Tb)[0] > 1e-9:
+        return 0.0
+    for _ in range(40):
+        mid = (lo + hi) / 2
+        if pair.overlap(Ta, _rot(Tb, direction * mid, cb))[0] > 1e-9:
+            hi = mid
+        else:
+            lo = mid
+    return lo
+
+
+def check_meshes(kit: Kit, thetas: np.ndarray) -> tuple[list[Finding], list[dict]]:
+    """Findings and one row of figures per meshing pair."""
+    settings = kit.params.checks
+    outlines = {}
+    for p in kit.parts:
+        if p.gear is not None and p.gear not in outlines:
+            outlines[p.gear] = Polygon(gear_outline(p.gear).points)
+    findings, rows = [], []
+    poses = [kit.poses(float(t)) for t in thetas]
+    for c in kit.contacts:
+        if c.kind != "mesh":
+            continue
+        pair = _Pair(kit, c.a, c.b, outlines)
+        ga, gb = pair.ga, pair.gb
+        s = ga.system
+        P0a, P0b = poses[0][c.a], poses[0][c.b]
+        a_op = float(np.linalg.norm(P0b[:2, 3] - P0a[:2, 3]))
+        a_design = centre_distance(ga, gb)
+        names = (c.a, c.b)
+        backlash = involute.circumferential_backlash(ga.teeth, gb.teeth, s.module, s.pressure_angle, ga.profile_shift,
+                                                     gb.profile_shift, s.backlash_per_gear, s.backlash_per_gear, a_op)
+        # the play measured on the outlines: turn b both ways from its assembled phase until it touches
+        r_wb = a_op * gb.teeth / (ga.teeth + gb.teeth)
+        measured = (_play(pair, P0a, P0b, 1) + _play(pair, P0a, P0b, -1)) * r_wb
+        eps = involute.contact_ratio(ga.teeth, gb.teeth, s.module, s.pressure_angle, ga.profile_shift, gb.profile_shift,
+                                     a_op, s.addendum_coeff) if backlash > -a_op else 0.0
+        tip = {f"{x}->{y}": a_op - gx.tip_radius - gy.root_radius for x, y, gx, gy in
+               ((c.a, c.b, ga, gb), (c.b, c.a, gb, ga))}
+        # involute interference: where b's tip meets the line of action, a must still be involute
+        aw = math.acos(min(1.0, (ga.pitch_radius + gb.pitch_radius) * math.cos(s.pressure_angle) / a_op))
+        contact_r = {}
+        for x, gx, gy in ((c.a, ga, gb), (c.b, gb, ga)):
+            rbx, rby = gx.pitch_radius * math.cos(s.pressure_angle), gy.pitch_radius * math.cos(s.pressure_angle)
+            g = a_op * math.sin(aw) - math.sqrt(max(gy.tip_radius**2 - rby**2, 0.0))
+            contact_r[x] = (math.hypot(rbx, g) if g > 0 else -1.0, involute.gear_outline(
+                gx.teeth, s.module, s.pressure_angle, gx.profile_shift, s.backlash_per_gear, s.addendum_coeff,
+                s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05).form_radius)
+        # tooth overlap over the motion, one evaluation per distinct mesh phase
+        seen, worst = set(), (0.0, None, None)
+        pa_pitch, pb_pitch = 2 * math.pi / ga.teeth, 2 * math.pi / gb.teeth
+        for n, pz in enumerate(poses):
+            Ta, Tb = pz[c.a], pz[c.b]
+            rel = np.linalg.inv(Ta) @ Tb
+            line = math.atan2(rel[1, 3], rel[0, 3])
+            key = (round((line % pa_pitch) / pa_pitch * 512) % 512,
+                   round(((math.atan2(rel[1, 0], rel[0, 0]) - line) % pb_pitch) / pb_pitch * 512) % 512)
+            if key in seen:
+                continue
+            seen.add(key)
+            area, where = pair.overlap(Ta, Tb)
+            if area * pair.face > worst[0]:
+                worst = (area * pair.face, n, (where.x, where.y, Ta[2, 3] + pair.face / 2))
+        row = {"pair": list(names), "teeth": [ga.teeth, gb.teeth], "centre_distance_mm": round(a_op, 5),
+               "design_centre_distance_mm": round(a_design, 5), "backlash_mm": round(backlash, 5),
+               "measured_backlash_mm": round(measured, 5), "contact_ratio": round(eps, 4),
+               "tip_clearance_mm": {k: round(v, 4) for k, v in tip.items()}, "phases_tested": len(seen),
+               "worst_overlap_mm3": round(worst[0], 6)}
+        rows.append(row)
+        label = f"{c.a}/{c.b} ({ga.teeth}/{gb.teeth})"
+        if worst[0] > settings.interference_tolerance:
+            n = worst[1]
+            findings.append(Finding("mesh", "fail", f"{label}: teeth overlap by {worst[0]:.3f} mm³ at crank angle "
+                                    f"{math.degrees(thetas[n]):.1f}° (centre distance {a_op:.3f} mm, design "
+                                    f"{a_design:.3f} mm)", names, float(thetas[n]), worst[0], "mm3", worst[2]))
+        if backlash < 0:
+            findings.append(Finding("mesh", "fail", f"{label}: no backlash ({backlash:.3f} mm) at centre distance "
+                                    f"{a_op:.3f} mm (design {a_design:.3f} mm)", names, None, backlash, "mm"))
+        elif abs(a_op - a_design) > 0.01:
+            findings.append(Finding("mesh", "fail", f"{label}: centre distance {a_op:.3f} mm, design {a_design:.3f} mm",
+                                    names, None, a_op - a_design, "mm"))
+        if 0 <= eps < settings.min_contact_ratio:
+            findings.append(Finding("mesh", "fail", f"{label}: contact ratio {eps:.3f} < {settings.min_contact_ratio:g}",
+                                    names, None, eps, ""))
+        for k, v in tip.items():
+            if v < 0.05 * s.module:
+                findings.append(Finding("mesh", "fail", f"{label}: tip of {k.split('->')[0]} clears the root of "
+                                        f"{k.split('->')[1]} by only {v:.3f} mm", names, None, v, "mm"))
+        for x, (r_contact, r_form) in contact_r.items():
+            if r_contact < r_form - 1e-6:
+                findings.append(Finding("mesh", "fail", f"{label}: the mate's tip meets {x} at r = {r_contact:.3f} mm, "
+                                        f"below its form radius {r_form:.3f} mm (involute interference)", names, None,
+                                        r_contact - r_form, "mm"))
+    return findings, rows

@@ -1,0 +1,95 @@
+"""Measuring solids: z-slab sections, exact intersection volumes and gaps (manifold3d), 2-D
+section overlap and distance (shapely). Every part partgen builds is a stack of z-prisms, so its
+slab sections describe it exactly.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import manifold3d as m3d
+import numpy as np
+import shapely
+from shapely.geometry import MultiPolygon, Polygon
+
+from .solid import mesh_arrays
+
+__all__ = ["Slab", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh"]
+
+
+@dataclass(frozen=True)
+class Slab:
+    """A z-interval of a part (local frame) over which its cross-section is constant.
+
+    z0, z1 : mm; shape : the section (shapely, local xy); centre (2,), radius : its smallest
+    bounding circle; disc : the section is (to 0.5 % of area) a full disc about that centre.
+    """
+
+    z0: float
+    z1: float
+    shape: Polygon | MultiPolygon
+    centre: tuple[float, float]
+    radius: float
+    disc: bool = False
+
+
+def to_shapely(cs: m3d.CrossSection) -> Polygon | MultiPolygon:
+    """A CrossSection as shapely geometry (outer contours counter-clockwise, holes clockwise)."""
+    rings = [np.asarray(r) for r in cs.to_polygons() if len(r) >= 3]
+    signed = [0.5 * np.sum(r[:, 0] * np.roll(r[:, 1], -1) - np.roll(r[:, 0], -1) * r[:, 1]) for r in rings]
+    outers = [Polygon(r) for r, a in zip(rings, signed) if a > 0]
+    holes = [Polygon(r) for r, a in zip(rings, signed) if a <= 0]
+    polys = []
+    for o in sorted(outers, key=lambda p: -p.area):
+        mine = [h for h in holes if o.contains(h.representative_point())]
+        holes = [h for h in holes if h not in mine]
+        polys.append(Polygon(o.exterior.coords, [h.exterior.coords for h in mine]))
+    return polys[0] if len(polys) == 1 else MultiPolygon(polys)
+
+
+def slabs(solid: m3d.Manifold) -> tuple[Slab, ...]:
+    """The slabs of a prism-stack solid, bottom to top."""
+    v, _ = mesh_arrays(solid)
+    levels = np.unique(np.round(v[:, 2], 7))
+    out = []
+    for z0, z1 in zip(levels[:-1], levels[1:]):
+        cs = solid.slice(float((z0 + z1) / 2))
+        if cs.is_empty():
+            continue
+        shape = to_shapely(cs)
+        circle = shapely.minimum_bounding_circle(shape)
+        c = circle.centroid
+        r = float(shapely.minimum_bounding_radius(shape))
+        disc = isinstance(shape, Polygon) and not shape.interiors and shape.area >= 0.995 * np.pi * r * r
+        out.append(Slab(float(z0), float(z1), shape, (c.x, c.y), r, disc))
+    return tuple(out)
+
+
+def place2d(shape, T: np.ndarray):
+    """``shape`` moved by the xy part of a (4, 4) pose (rotation about z and translation)."""
+    R, t = T[:2, :2], T[:2, 3]
+    return shapely.transform(shape, lambda p: p @ R.T + t)
+
+
+def intersection(a: m3d.Manifold, Ta: np.ndarray, b: m3d.Manifold, Tb: np.ndarray) -> tuple[float, np.ndarray | None]:
+    """Exact volume (mm³) of the overlap of a at pose Ta and b at pose Tb, and its centre (world)."""
+    common = a.transform(Ta[:3, :]) ^ b.transform(Tb[:3, :])
+    vol = common.volume()
+    if vol <= 0:
+        return 0.0, None
+    lo, hi = np.asarray(common.bounding_box()).reshape(2, 3)
+    return float(vol), (lo + hi) / 2
+
+
+def min_gap(a: m3d.Manifold, Ta: np.ndarray, b: m3d.Manifold, Tb: np.ndarray, search: float) -> float:
+    """Closest distance (mm) between a at Ta and b at Tb, or ``search`` if farther."""
+    return float(a.transform(Ta[:3, :]).min_gap(b.transform(Tb[:3, :]), search))
+
+
+def from_mesh(vertices: np.ndarray, faces: np.ndarray) -> m3d.Manifold:
+    """A solid from a watertight triangle mesh (vertices (n, 3) mm, faces (m, 3))."""
+    mesh = m3d.Mesh(vert_properties=np.asarray(vertices, dtype=np.float32), tri_verts=np.asarray(faces, dtype=np.uint32))
+    solid = m3d.Manifold(mesh)
+    if solid.status() != m3d.Error.NoError:
+        raise ValueError(f"not a manifold solid: {solid.status()}")
+    return solid
