@@ -11,9 +11,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 from .assembly.kit import Kit, build_kit
-from .config.loader import load_design
+from .config.loader import load_design, read_yaml
 from .config.resolve import resolve
 from .design.drivetrain import Finding
 from .design.mechanism import KitParams, Mechanism, synthesize
@@ -29,6 +30,7 @@ class Loaded:
     path: Path
     mechanism: Mechanism
     params: KitParams
+    printer_path: Path
 
 
 def load(path: str | Path) -> Loaded:
@@ -39,7 +41,7 @@ def load(path: str | Path) -> Loaded:
         mech = synthesize(inputs, params)
     except DesignError as e:
         raise ConfigError(loaded.path, e.key_path, e.problem) from None
-    return Loaded(loaded.path, mech, params)
+    return Loaded(loaded.path, mech, params, loaded.printer_path)
 
 
 def _size_key(kit: Kit, name: str) -> str:
@@ -115,5 +117,62 @@ def build(path: str | Path, dest: str | Path | None = None, progress=None) -> tu
                           f"and does not fit the printer's {env} mm envelope in any orientation"
                           + (f" (and {len(big) - 1} more parts)" if len(big) > 1 else ""))
     dest = Path(dest) if dest is not None else Path("out") / loaded.params.name
-    man = write_kit(kit, dest, design_summary(loaded, kit), progress=progress)
+    man = write_kit(kit, dest, design_summary(loaded, kit), design_files(loaded), progress=progress)
     return loaded, kit, man, dest
+
+
+def design_files(loaded: Loaded) -> dict[str, bytes]:
+    """The design and its printer profile, as a kit folder keeps them (so `check KITDIR` can
+    re-derive the kit): design.yaml names printer.yaml beside it."""
+    data = read_yaml(loaded.path)
+    data["printer"] = "printer.yaml"
+    dump = lambda d: yaml.safe_dump(d, sort_keys=False, allow_unicode=True).encode()  # noqa: E731
+    return {"design.yaml": dump(data), "printer.yaml": dump(read_yaml(loaded.printer_path))}
+
+
+def check(target: str | Path, samples: int | None = None, progress=None, plates_dir: str | Path | None = None,
+          write_plates: bool = True):
+    """Check a design (CONFIG) or a built kit (KITDIR, re-derived from its design.yaml and compared
+    byte for byte). Lays the parts out on build plates and writes a 3MF and a picture per plate.
+    Returns (Loaded, Kit, Result, plates folder or None)."""
+    from .checks.findings import Finding
+    from .checks.run import check_kit
+    from .export.kit import atomic_dir, group_parts, printed
+    from .export.plates import footprint, layout, plate_meshes, plate_picture, write_plate_3mf
+
+    target = Path(target)
+    kit_dir = target if target.is_dir() else None
+    loaded = load(target / "design.yaml" if kit_dir else target)
+    try:
+        kit = build_kit(loaded.mechanism, loaded.params)
+    except DesignError as e:
+        raise ConfigError(loaded.path, e.key_path, e.problem) from None
+    result = check_kit(kit, samples, progress)
+    groups = group_parts([printed(p) for p in kit.parts])
+    if kit_dir is not None:
+        stale = [f"{g[0].part.name}.stl" for g in groups
+                 if not (kit_dir / f"{g[0].part.name}.stl").is_file()
+                 or (kit_dir / f"{g[0].part.name}.stl").read_bytes() != g[0].stl]
+        if stale:
+            result.add(Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its "
+                               f"design.yaml builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
+                               tuple(s[:-4] for s in stale)))
+    env = loaded.params.printer.envelope
+    margin = loaded.params.checks.plate_margin
+    meshes = {g[0].part.name: g[0].mesh for g in groups}
+    folder = None
+    try:
+        lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
+    except ValueError as e:
+        result.add(Finding("printability", "fail", f"build plates: {e}"))
+        lay = None
+    if lay is not None:
+        result.figures["plates"] = len(lay.plates)
+        if write_plates:
+            folder = Path(plates_dir) if plates_dir else (kit_dir or Path("out") / loaded.params.name) / "plates"
+            with atomic_dir(folder) as tmp:
+                for i, parts in enumerate(plate_meshes(lay, meshes), 1):
+                    (tmp / f"plate{i}.3mf").write_bytes(write_plate_3mf(parts))
+                plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, tmp / "plates.png",
+                              f"{loaded.params.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
+    return loaded, kit, result, folder

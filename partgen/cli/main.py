@@ -12,6 +12,7 @@ import traceback
 
 from ..errors import PartgenError
 from . import build as build_cmd
+from . import check as check_cmd
 
 __all__ = ["main", "entry"]
 
@@ -20,6 +21,7 @@ def parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="partgen", description="Mechanism design tables to checked, print-ready part kits.")
     sub = ap.add_subparsers(dest="command", required=True)
     build_cmd.add_parser(sub)
+    check_cmd.add_parser(sub)
     return ap
 
 

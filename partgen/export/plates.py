@@ -14,6 +14,9 @@ one's origin must not go) is again one of them with summed support distances, an
 for a part is one shapely difference: the plate rectangle minus the union of the no-fit polygons;
 its bottom-left point is one of its vertices. Nothing is random: the same input gives the same
 layout.
+
+The 3MF is written here (zip + the core-spec XML) rather than by trimesh's exporter, which needs
+lxml and stamps random UUIDs on every object, so its files are never byte-identical run to run.
 """
 
 from __future__ import annotations
