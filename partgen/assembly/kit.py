@@ -108,8 +108,11 @@ class Kit:
         return out
 
 
-def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
-    """Build every part of the kit. ``progress(name)`` is called as each part is made."""
+def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: dict | None = None) -> Kit:
+    """Build every part of the kit. ``progress(name)`` is called as each part is made.
+
+    ``clock_error`` (name -> rad) makes fixed gears with their teeth turned that far off the
+    clocking the mesh needs, as a badly made part would be: for fault studies."""
     say = progress or (lambda name: None)
     st = Stack(params.joints.axial_gap, params.face_width, params.plate_thickness)
     g, f, t = st.gap, st.face, st.plate
@@ -123,6 +126,8 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None) -> Kit:
     rb = boss.radius
     n = len(mech.chain.links)
     clock = clockings(mech)
+    for name, err in (clock_error or {}).items():
+        clock[name] += err
     parts: list[Part] = []
 
     def add(part: Part):

@@ -34,12 +34,15 @@ def features(shape) -> tuple[float, float]:
 def check_printability(kit: Kit, geo: dict[str, PartGeometry], extents: dict[str, np.ndarray]) -> tuple[list[Finding], dict]:
     """``extents``: name -> (3,) printed extents of each distinct part."""
     pr = kit.params.printer
-    env = np.sort(np.asarray(pr.envelope, dtype=float))
     findings, figures = [], {"smallest_hole_mm": np.inf, "thinnest_wall_mm": np.inf, "narrowest_tip_mm": np.inf}
+    ex, ey, ez = (float(v) for v in pr.envelope)
     for name, ext in extents.items():
-        if np.any(np.sort(ext) > env + 1e-9):
-            findings.append(Finding("printability", "fail", f"{name} ({' × '.join(f'{x:.1f}' for x in ext)} mm) does not fit "
-                                    f"the {pr.name} envelope {' × '.join(f'{x:g}' for x in pr.envelope)} mm",
+        # in its print orientation: its height under the envelope's, its footprint (turned about z
+        # as the plate layout may) inside the plate
+        x, y, z = (float(v) for v in ext)
+        if z > ez + 1e-9 or not ((x <= ex + 1e-9 and y <= ey + 1e-9) or (y <= ex + 1e-9 and x <= ey + 1e-9)):
+            findings.append(Finding("printability", "fail", f"{name} ({' × '.join(f'{v:.1f}' for v in ext)} mm as printed) "
+                                    f"does not fit the {pr.name} envelope {' × '.join(f'{v:g}' for v in pr.envelope)} mm",
                                     (name,), None, float(np.max(ext)), "mm"))
         hole, wall = np.inf, np.inf
         for s in geo[name].slabs:

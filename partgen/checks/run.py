@@ -19,7 +19,8 @@ __all__ = ["check_kit", "printed_extents"]
 
 
 def printed_extents(kit: Kit) -> dict[str, np.ndarray]:
-    """(3,) extents of each part as it lies on the build plate, mm (a flip keeps the extents)."""
+    """(3,) x, y, z extents of each part as it lies on the build plate, mm (printing it flipped
+    about x keeps them)."""
     out = {}
     for p in kit.parts:
         v, _ = mesh_arrays(p.solid)

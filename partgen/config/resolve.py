@@ -55,7 +55,8 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
         chord_tolerance=g.chord_tolerance_mm,
     )
     teeth = None if d.teeth == "auto" else tuple((t.D, t.M, t.G) for t in d.teeth)
-    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped)
+    idlers = None if d.teeth == "auto" else tuple(tuple(t.idler_mm) if t.idler_mm else None for t in d.teeth)
+    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped, idlers)
     j = d.joints
     params = KitParams(
         name=d.name,

@@ -81,11 +81,13 @@ class LinkRow(Strict):
 
 
 class StageTeeth(Strict):
-    """Teeth of link j's stage: D_j, idler M_j, G_{j+1}."""
+    """Teeth of link j's stage: D_j, idler M_j, G_{j+1}; ``idler_mm`` places the idler by hand (link
+    frame: proximal joint at 0, distal at (S, 0)) instead of by circle intersection."""
 
     D: Teeth
     M: Teeth
     G: Teeth
+    idler_mm: Annotated[list[float], Field(min_length=2, max_length=2)] | None = None
 
 
 class Gears(Strict):

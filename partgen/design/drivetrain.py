@@ -186,6 +186,11 @@ def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:
     m = D.module
     if not (m / 2 * (3 * D.teeth + G.teeth) >= S or m / 2 * (D.teeth + 3 * G.teeth) >= S):
         out.append(Finding("warning", "eq13", f"link {stage.j}: Eq 13 fails, no idler as large as D or G reaches both", key))
+    for name, centre, a in (("D", (0.0, 0.0), stage.a_DM), ("G", (S, 0.0), stage.a_MG)):
+        d = math.dist(stage.idler, centre)
+        if abs(d - a) > 1e-6:
+            out.append(Finding("warning", "idler-place", f"link {stage.j}: the idler stands {d:.3f} mm from {name}, "
+                               f"the mesh needs {a:.3f} mm", key + ".idler_mm"))
     reach = stage.a_DM + stage.a_MG - S
     if reach < limits.idler_reach:
         out.append(Finding("warning", "idler-reach", f"link {stage.j}: idler {M.teeth} reaches with {reach:.3f} mm to spare "

@@ -7,7 +7,7 @@ layer works from: the chain, one ``Stage`` per coupled link, the drive pair, and
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ..errors import DesignError
 from . import involute
@@ -96,6 +96,7 @@ class MechanismInputs:
     curve: FourierCurve | None = None
     scale: float = 1.0
     dropped: tuple[str, ...] = ()
+    idlers: tuple[tuple[float, float] | None, ...] | None = None  # hand-placed idlers per stage
 
 
 @dataclass(frozen=True)
@@ -159,6 +160,9 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
                               f"need one per link but the last ({len(ratios)})", "teeth")
         for j, (link, r, t) in enumerate(zip(links, ratios, inputs.teeth), 1):
             st = make_stage(j, link.length, r, t, system)
+            placed = inputs.idlers[j - 1] if inputs.idlers else None
+            if placed is not None:
+                st = replace(st, idler=(float(placed[0]), float(placed[1])))
             stages.append(st)
             findings += verify_stage(st, limits, f"teeth[{j - 1}]")
     G1, drive = make_gear(params.drive_teeth, system), make_gear(params.drive_teeth, system)
