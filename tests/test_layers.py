@@ -7,13 +7,14 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).parent.parent / "partgen"
-LAYERS = ["design", "config", "geometry", "assembly", "export", "cli"]
+LAYERS = ["design", "config", "geometry", "assembly", "checks", "export", "cli"]
 # what each layer may import from partgen (besides itself and errors) and which libraries it must not
 ALLOWED = {
     "design": set(),
     "config": {"design"},
     "geometry": {"design"},
     "assembly": {"design", "geometry"},
+    "checks": {"design", "geometry", "assembly"},
     "export": {"design", "geometry", "assembly"},
 }
 FORBIDDEN_LIBS = {
@@ -21,6 +22,7 @@ FORBIDDEN_LIBS = {
     "config": {"manifold3d", "trimesh", "shapely", "matplotlib"},
     "geometry": {"trimesh", "yaml", "pydantic", "matplotlib"},
     "assembly": {"trimesh", "yaml", "pydantic", "matplotlib"},
+    "checks": {"manifold3d", "trimesh", "yaml", "pydantic", "matplotlib"},
 }
 
 
