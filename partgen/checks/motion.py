@@ -17,7 +17,7 @@ import numpy as np
 import shapely
 
 from ..assembly.kit import Kit
-from ..geometry.measure import Slab, intersection, place2d, slabs
+from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs
 from .findings import Finding
 
 __all__ = ["PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
@@ -179,11 +179,15 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
             (names[a], names[b]), float(thetas[w.n_vol]), vol, "mm3",
             tuple(centre) if centre is not None else w.where2d))
 
-    # clearance: same-height pairs measured in 2-D, thin z-gaps from the stack
+    # clearance: same-height pairs found in 2-D, measured in 3-D (manifold3d min_gap) at their
+    # closest angle; thin z-gaps from the stack
     closest = None
     for (a, b), w in worst.items():
         if w.n_vol >= 0 or w.n_gap < 0:
             continue
+        if w.gap < reach:
+            w.gap = min_gap(geo[names[a]].solid, P[w.n_gap, a], geo[names[b]].solid, P[w.n_gap, b], reach + 1.0)
+            tests += 1
         if closest is None or w.gap < closest[0]:
             closest = (w.gap, names[a], names[b], float(thetas[w.n_gap]), w.where_gap)
         if w.gap < settings.min_clearance:
