@@ -48,7 +48,7 @@ def _size_key(kit: Kit, name: str) -> str:
     mech = kit.mechanism
     if name.startswith("B"):
         j = int(name[1:])
-        return "curve.scale_mm_per_unit" if mech.curve is not None else f"links[{j - 1}].length_mm"
+        return "curve.scale_mm_per_unit" if mech.source == "curve" else f"links[{j - 1}].length_mm"
     if name in ("G1", "drive"):
         return "drive.teeth"
     if name[0] in "DMG" and name[1:].isdigit():
@@ -176,3 +176,39 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
                 plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, tmp / "plates.png",
                               f"{loaded.params.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
     return loaded, kit, result, folder
+
+
+def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | None = None, animate: bool = True):
+    """Trace the pen of a design as built over one crank turn and compare it with its targets.
+
+    Returns (Loaded, theta (n,), pen (n,) complex mm, stats dict, plots folder or None)."""
+    from .design.synthesis import trace as trace_chain
+    from .design.trace import built_chain, built_speeds, deviation, target_paths
+    from .export.kit import atomic_dir
+    from .export.trace_plots import trace_animation, trace_figure
+
+    loaded = load(path)
+    mech = loaded.mechanism
+    theta = 2 * np.pi * np.arange(samples) / samples
+    pen = trace_chain(built_chain(mech), theta)
+    targets = target_paths(mech, theta)
+    speeds = built_speeds(mech)
+    stats = {"samples": samples, "speeds": [str(w) for w in speeds],
+             "closes_after_one_turn": all(w.denominator == 1 for w in speeds),
+             "vs_pruned": deviation(pen, targets["pruned"], theta).to_dict()}
+    if "full" in targets:
+        stats.update(deviation(pen, targets["full"], theta).to_dict())
+        stats["pruned_vs_full"] = deviation(targets["pruned"], targets["full"], theta).to_dict()
+    folder = None
+    if plots_dir is not False:
+        folder = Path(plots_dir) if plots_dir else Path("out") / loaded.params.name / "trace"
+        with atomic_dir(folder) as tmp:
+            head = {k: v for k, v in stats.items() if k.endswith("_mm")} or \
+                {k: v for k, v in stats["vs_pruned"].items() if k.endswith("_mm")}
+            if "worst_theta_rad" in stats:
+                head["worst_theta_rad"] = stats["worst_theta_rad"]
+            trace_figure(mech, head, tmp / "trace.png", tmp / "trace.svg",
+                         f"{loaded.params.name}: the pen over one crank turn (mm)")
+            if animate:
+                trace_animation(mech, tmp / "trace.gif")
+    return loaded, theta, pen, stats, folder

@@ -15,14 +15,17 @@ from .loader import LoadedDesign
 __all__ = ["resolve"]
 
 
+def _fourier(c) -> curves.FourierCurve:
+    if c.polar is not None:
+        return curves.from_polar(c.polar.constant, c.polar.sin, c.polar.cos)
+    return curves.from_cartesian(c.cartesian.a, c.cartesian.b, c.cartesian.c, c.cartesian.d)
+
+
 def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]:
     d = loaded.design
     if d.curve is not None:
         c = d.curve
-        if c.polar is not None:
-            fc = curves.from_polar(c.polar.constant, c.polar.sin, c.polar.cos)
-        else:
-            fc = curves.from_cartesian(c.cartesian.a, c.cartesian.b, c.cartesian.c, c.cartesian.d)
+        fc = _fourier(c)
         offset, links = links_from_curve(fc, c.scale_mm_per_unit)
         names = {l.name for l in links}
         for i, n in enumerate(c.drop_links):
@@ -36,6 +39,8 @@ def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]
     links = tuple(Link(r.name, r.speed, r.length_mm, math.radians(r.initial_angle_deg)) for r in d.links)
     if not links:
         raise ConfigError(loaded.path, "links", "the design table has no links")
+    if d.target is not None:
+        return Chain(links, complex(*d.offset_mm)), _fourier(d.target), d.target.scale_mm_per_unit, ()
     return Chain(links, complex(*d.offset_mm)), None, 1.0, ()
 
 
@@ -56,7 +61,8 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     )
     teeth = None if d.teeth == "auto" else tuple((t.D, t.M, t.G) for t in d.teeth)
     idlers = None if d.teeth == "auto" else tuple(tuple(t.idler_mm) if t.idler_mm else None for t in d.teeth)
-    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped, idlers)
+    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped, idlers,
+                             "curve" if d.curve is not None else "table")
     j = d.joints
     params = KitParams(
         name=d.name,

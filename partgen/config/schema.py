@@ -67,6 +67,20 @@ class Curve(Strict):
         return self
 
 
+class Target(Strict):
+    """The curve a design table is meant to draw (for `partgen trace`), at print scale."""
+
+    polar: Polar | None = None
+    cartesian: Cartesian | None = None
+    scale_mm_per_unit: Pos
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        if (self.polar is None) == (self.cartesian is None):
+            raise ValueError("give exactly one of 'polar' or 'cartesian'")
+        return self
+
+
 class LinkRow(Strict):
     name: str
     speed: int
@@ -175,6 +189,7 @@ class Design(Strict):
     printer: str
     curve: Curve | None = None
     links: list[LinkRow] | None = None
+    target: Target | None = None
     offset_mm: Annotated[list[float], Field(min_length=2, max_length=2)] = [0.0, 0.0]
     teeth: Literal["auto"] | list[StageTeeth]
     gears: Gears
@@ -190,4 +205,6 @@ class Design(Strict):
     def _one_source(self):
         if (self.curve is None) == (self.links is None):
             raise ValueError("give exactly one of 'curve' (derive the links) or 'links' (a design table)")
+        if self.target is not None and self.curve is not None:
+            raise ValueError("'target' is for design tables ('links'); a 'curve' design is traced against its curve")
         return self

@@ -97,6 +97,7 @@ class MechanismInputs:
     scale: float = 1.0
     dropped: tuple[str, ...] = ()
     idlers: tuple[tuple[float, float] | None, ...] | None = None  # hand-placed idlers per stage
+    source: str = "curve"  # "curve": links derived from ``curve``; "table": a design table (curve = its target)
 
 
 @dataclass(frozen=True)
@@ -111,6 +112,7 @@ class Mechanism:
     scale: float = 1.0
     dropped: tuple[str, ...] = ()
     auto_teeth: bool = True
+    source: str = "curve"
 
     @property
     def gears(self) -> list[tuple[str, GearSpec]]:
@@ -173,4 +175,4 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     a = centre_distance(G1, drive)
     drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
-                     inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None)
+                     inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source)

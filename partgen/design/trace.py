@@ -1,0 +1,83 @@
+"""The pen path of a chain as built — speeds from its tooth counts, not from the ideal ratios —
+and how far it is from the target curve (pure math, mm and rad).
+
+As built, link speeds follow from the gears (the student report's recurrence, equivalent to
+Eq 11): with the crank turning B1 at T_drive / T_G1,
+``ω_{j+1} = ω_j + (T_D,j / T_G,j+1)·(ω_{j-1} − ω_j)``, ω_0 = 0 (the base).
+Teeth that meet Eq 11 give back the integer design speeds exactly; others give fractional speeds
+and a path that no longer closes after one crank turn.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from .mechanism import Mechanism
+from .synthesis import Chain, Link, links_from_curve, trace
+
+__all__ = ["built_speeds", "built_chain", "Deviation", "deviation", "hausdorff", "target_paths"]
+
+
+def built_speeds(mech: Mechanism) -> tuple[Fraction, ...]:
+    """World speed of each link (crank turns: one per cycle) as its gears make it, exact."""
+    w = [Fraction(0), Fraction(mech.drive.teeth, mech.G1.teeth)]
+    for s in mech.stages:
+        w.append(w[-1] + Fraction(s.D.teeth, s.G.teeth) * (w[-2] - w[-1]))
+    return tuple(w[1:])
+
+
+def built_chain(mech: Mechanism) -> Chain:
+    """The chain with the speeds its gears give (lengths and initial angles as assembled)."""
+    links = tuple(Link(l.name, float(w), l.length, l.phase) for l, w in zip(mech.chain.links, built_speeds(mech)))
+    return Chain(links, mech.chain.offset)
+
+
+def target_paths(mech: Mechanism, theta: np.ndarray) -> dict[str, np.ndarray]:
+    """(n,) complex mm: the full Fourier series of the target curve ("full") and the chain the
+    design asks for, with ideal speeds ("pruned")."""
+    out = {"pruned": trace(mech.chain, theta)}
+    if mech.curve is not None:
+        out["full"] = mech.curve.evaluate(theta) * mech.scale
+    return out
+
+
+def hausdorff(a: np.ndarray, b: np.ndarray, chunk: int = 2048) -> float:
+    """Symmetric Hausdorff distance between two point sets (complex (n,) arrays), mm."""
+    def directed(p, q):
+        worst = 0.0
+        for i in range(0, len(p), chunk):
+            d = np.abs(p[i:i + chunk, None] - q[None, :])
+            worst = max(worst, float(d.min(axis=1).max()))
+        return worst
+    return max(directed(a, b), directed(b, a))
+
+
+@dataclass(frozen=True)
+class Deviation:
+    """Pointwise (same θ) maximum and RMS, and Hausdorff (shape, any θ) distances, mm."""
+
+    max_mm: float
+    rms_mm: float
+    hausdorff_mm: float
+    at_theta: float
+
+    def to_dict(self) -> dict:
+        return {"max_deviation_mm": round(self.max_mm, 6), "rms_mm": round(self.rms_mm, 6),
+                "hausdorff_mm": round(self.hausdorff_mm, 6), "worst_theta_rad": round(self.at_theta, 6)}
+
+
+def deviation(path: np.ndarray, target: np.ndarray, theta: np.ndarray) -> Deviation:
+    """How far ``path`` is from ``target`` sampled at the same crank angles ``theta``."""
+    d = np.abs(path - target)
+    k = int(np.argmax(d))
+    return Deviation(float(d[k]), float(np.sqrt(np.mean(d**2))), hausdorff(path, target), float(theta[k]))
+
+
+def curve_links(mech: Mechanism) -> tuple[complex, tuple[Link, ...]]:
+    """All links of the target curve at print scale (for drawing what was dropped)."""
+    if mech.curve is None:
+        return mech.chain.offset, mech.chain.links
+    return links_from_curve(mech.curve, mech.scale)
