@@ -138,7 +138,7 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
     from .checks.findings import Finding
     from .checks.run import check_kit
     from .export.kit import atomic_dir, group_parts, printed
-    from .export.plates import footprint, layout, plate_meshes, plate_picture, write_plate_3mf
+    from .export.plates import plate_meshes, write_plate_3mf
 
     target = Path(target)
     kit_dir = target if target.is_dir() else None
@@ -157,25 +157,38 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
             result.add(Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its "
                                f"design.yaml builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
                                tuple(s[:-4] for s in stale)))
+    lay, picture = plan_plates(loaded, groups, result)
+    folder = None
+    if lay is not None and write_plates:
+        meshes = {g[0].part.name: g[0].mesh for g in groups}
+        folder = Path(plates_dir) if plates_dir else (kit_dir or Path("out") / loaded.params.name) / "plates"
+        with atomic_dir(folder) as tmp:
+            for i, parts in enumerate(plate_meshes(lay, meshes), 1):
+                (tmp / f"plate{i}.3mf").write_bytes(write_plate_3mf(parts))
+            picture(tmp / "plates.png")
+    return loaded, kit, result, folder
+
+
+def plan_plates(loaded: Loaded, groups, result):
+    """Pack the printed parts on build plates; adds a finding if one cannot fit. Returns the
+    layout (or None) and a function that draws it to a PNG path."""
+    from .checks.findings import Finding
+    from .export.plates import footprint, layout, plate_picture
+
     env = loaded.params.printer.envelope
     margin = loaded.params.checks.plate_margin
     meshes = {g[0].part.name: g[0].mesh for g in groups}
-    folder = None
     try:
         lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
     except ValueError as e:
         result.add(Finding("printability", "fail", f"build plates: {e}"))
-        lay = None
-    if lay is not None:
-        result.figures["plates"] = len(lay.plates)
-        if write_plates:
-            folder = Path(plates_dir) if plates_dir else (kit_dir or Path("out") / loaded.params.name) / "plates"
-            with atomic_dir(folder) as tmp:
-                for i, parts in enumerate(plate_meshes(lay, meshes), 1):
-                    (tmp / f"plate{i}.3mf").write_bytes(write_plate_3mf(parts))
-                plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, tmp / "plates.png",
-                              f"{loaded.params.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
-    return loaded, kit, result, folder
+        return None, None
+    result.figures["plates"] = len(lay.plates)
+
+    def picture(path):
+        plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, path,
+                      f"{loaded.params.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
+    return lay, picture
 
 
 def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | None = None, animate: bool = True):
@@ -212,3 +225,113 @@ def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | 
             if animate:
                 trace_animation(mech, tmp / "trace.gif")
     return loaded, theta, pen, stats, folder
+
+
+def report(path: str | Path, dest: str | Path | None = None, samples: int | None = None, progress=None) -> Path:
+    """Write DIR/index.html (default out/<name>/report/): one self-contained page with the design,
+    the bill of parts with pictures, the stacking, the trace, the check and the build plates."""
+    import math
+    import tempfile
+
+    from .design.trace import built_speeds
+    from .export import report as R
+    from .export.kit import atomic_dir
+    from .export.plots import ROLE_COLOURS, stack_section
+    from .export.render import render
+
+    say = progress or (lambda step: None)
+    say("check")
+    loaded, kit, result, _ = check(path, samples, write_plates=False)
+    mech, params = loaded.mechanism, loaded.params
+    from .export.kit import group_parts, printed
+    groups = group_parts([printed(p) for p in kit.parts])
+    with tempfile.TemporaryDirectory() as tmpdir:
+        tmp = Path(tmpdir)
+        say("trace")
+        _, _, _, stats, tdir = trace_design(path, 3600, tmp / "trace")
+        trace_png, trace_gif = (tdir / "trace.png").read_bytes(), (tdir / "trace.gif").read_bytes()
+        say("stacking")
+        stack_section(kit, tmp / "stack.png")
+        stack_png = (tmp / "stack.png").read_bytes()
+        _, picture = plan_plates(loaded, groups, result)
+        plates_png = None
+        if picture is not None:
+            picture(tmp / "plates.png")
+            plates_png = (tmp / "plates.png").read_bytes()
+    say("pictures")
+    pics = {}
+    for g in groups:
+        m = g[0].mesh
+        pics[g[0].part.name] = render([(m.vertices, m.faces, ROLE_COLOURS.get(g[0].part.role, "#999"))], (300, 240))
+    poses = kit.poses(0.0)
+    scene = []
+    for g in groups:
+        for it in g:
+            T = poses[it.part.name] @ it.local_from_print
+            scene.append((g[0].mesh.vertices @ T[:3, :3].T + T[:3, 3], g[0].mesh.faces, ROLE_COLOURS.get(it.part.role, "#999")))
+    assembly_png = render(scene, (1100, 720), elev=35, azim=-70)
+
+    r6 = lambda x: round(float(x), 3)  # noqa: E731
+    speeds = built_speeds(mech)
+    links = [[j, l.name, l.speed, r6(l.length), r6(math.degrees(l.phase)), str(w)]
+             for j, (l, w) in enumerate(zip(mech.chain.links, speeds), 1)]
+    stages = [[s.j, str(s.ratio), f"{s.D.teeth} / {s.M.teeth} / {s.G.teeth}",
+               f"{s.D.profile_shift:.3f} / {s.M.profile_shift:.3f} / {s.G.profile_shift:.3f}",
+               r6(s.a_DM), r6(s.a_MG), f"({s.idler[0]:.2f}, {s.idler[1]:.2f})"] for s in mech.stages]
+    design = (R.table(["link", "name", "speed", "length mm", "initial angle °", "speed as built"], links, left=2)
+              + R.table(["stage", "Eq 11 ratio", "teeth D / M / G", "profile shift D / M / G", "a_DM mm", "a_MG mm",
+                         "idler (link frame) mm"], stages, left=1)
+              + f"<p>Module {params.system.module:g} mm, pressure angle {math.degrees(params.system.pressure_angle):g}°, "
+              f"backlash {params.system.backlash_per_gear:g} mm per gear, face width {params.face_width:g} mm, "
+              f"printer {html_escape(params.printer.name)}, material {html_escape(params.material)}.</p>")
+    rows = []
+    density = params.density
+    for g in groups:
+        p, m = g[0].part, g[0].mesh
+        gear = p.gear
+        rows.append([R.img(pics[p.name], p.name), p.name, p.role, len(g), " × ".join(f"{x:.1f}" for x in m.extents),
+                     r6(m.volume / 1000), r6(m.volume * density),
+                     f"{gear.teeth} t, x = {gear.profile_shift:.3f}" if gear else ""])
+    total = sum(len(g) * g[0].mesh.volume * density for g in groups)
+    parts_html = (f'<figure>{R.img(assembly_png, "assembly at crank angle 0")}<figcaption>The assembly at crank '
+                  f"angle 0 ({sum(len(g) for g in groups)} parts, {total:.0f} g).</figcaption></figure>"
+                  f'<div class="parts">' + R.table(["picture", "part", "role", "count", "size mm (as printed)",
+                                                    "volume cm³", "mass g", "gear"], rows, left=3, raw={0}) + "</div>")
+    stack_html = f'<figure>{R.img(stack_png, "section through the joints")}<figcaption>True section through the ' \
+                 "joints, links straightened.</figcaption></figure>"
+    dev = [["the full Fourier series", stats.get("max_deviation_mm", "–"), stats.get("rms_mm", "–"),
+            stats.get("hausdorff_mm", "–")],
+           ["the design's chain (pruned)", stats["vs_pruned"]["max_deviation_mm"], stats["vs_pruned"]["rms_mm"],
+            stats["vs_pruned"]["hausdorff_mm"]]]
+    trace_html = (R.table(["traced (as built) vs", "max, same θ (mm)", "rms (mm)", "Hausdorff (mm)"], dev)
+                  + f'<div class="grid"><figure>{R.img(trace_png, "trace", width=640)}</figure>'
+                  f'<figure>{R.img(trace_gif, "animation", "image/gif", width=440)}<figcaption>One crank turn.'
+                  "</figcaption></figure></div>")
+    fails = [[f.check, f'<span class="{f.severity}">{f.severity}</span>', html_escape(f.message),
+              "" if f.theta is None else f"{math.degrees(f.theta):.1f}"] for f in result.findings]
+    fig = result.figures
+    close = fig["motion"].get("closest_approach")
+    summary = (f'<p class="{"ok" if result.ok else "fail"}">{"Every check holds" if result.ok else "The kit fails its checks"}'
+               f" — {fig['samples']} crank angles, {fig['pairs']} part pairs, {len(fig['meshes'])} meshes, "
+               f"{fig['fits']['count']} fits; closest approach "
+               + (f"{close['mm']:.3f} mm ({close['parts'][0]}–{close['parts'][1]})" if close else "–")
+               + f"; {fig.get('plates', '?')} build plate(s).</p>")
+    mesh_rows = [[" / ".join(r["pair"]), " / ".join(map(str, r["teeth"])), r["centre_distance_mm"], r["backlash_mm"],
+                  r["measured_backlash_mm"], r["contact_ratio"]] for r in fig["meshes"]]
+    check_html = (summary + (R.table(["check", "severity", "finding", "crank °"], fails, left=3, raw={1}) if fails else "")
+                  + R.table(["mesh", "teeth", "centre distance mm", "backlash mm", "measured mm", "contact ratio"],
+                            mesh_rows)
+                  + (f"<figure>{R.img(plates_png, 'build plates')}</figure>" if plates_png else ""))
+    sections = [("Design", design), ("Bill of parts", parts_html), ("Stacking", stack_html), ("Trace", trace_html),
+                ("Check", check_html)]
+    out = Path(dest) if dest else Path("out") / params.name / "report"
+    with atomic_dir(out) as tmp:
+        (tmp / "index.html").write_text(R.page(f"partgen report: {params.name}", sections,
+                                               f"{loaded.path.name} — {mech.stages and len(mech.chain.links)} links"),
+                                        encoding="utf-8")
+    return out
+
+
+def html_escape(s: str) -> str:
+    import html
+    return html.escape(str(s))

@@ -13,6 +13,7 @@ import traceback
 from ..errors import PartgenError
 from . import build as build_cmd
 from . import check as check_cmd
+from . import report as report_cmd
 from . import trace as trace_cmd
 
 __all__ = ["main", "entry"]
@@ -24,6 +25,7 @@ def parser() -> argparse.ArgumentParser:
     build_cmd.add_parser(sub)
     check_cmd.add_parser(sub)
     trace_cmd.add_parser(sub)
+    report_cmd.add_parser(sub)
     return ap
 
 
