@@ -121,6 +121,11 @@ def test_two_plates_on_one_layer_collide_only_at_some_angles(default_kit):
     k = int(f.message.split("overlapping at ")[1].split(" of")[0])
     assert 0 < k < SAMPLES  # only at some crank angles
     assert f.value > default_kit.params.checks.interference_tolerance
+    # the count is the angles at which the two plates really overlap (exact, every angle)
+    from partgen.geometry.measure import intersection
+    a, b = kit.part("B3").solid, kit.part("B5").solid
+    exact = sum(intersection(a, kit.poses(t)["B3"], b, kit.poses(t)["B5"])[0] > 0.001 for t in sample_angles(SAMPLES))
+    assert k == exact
 
 
 def test_meshing_pair_overlaps_zero_and_nudged_it_overlaps(default_kit):

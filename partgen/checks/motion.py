@@ -63,7 +63,8 @@ def declared_pairs(kit: Kit) -> set[frozenset]:
 class _Worst:
     volume: float = 0.0
     n_vol: int = -1
-    angles: int = 0
+    angles: int = 0  # sampled angles at which the pair overlaps (any of its slab pairs)
+    last_n: int = -1
     where2d: tuple | None = None
     gap: float = math.inf
     n_gap: int = -1
@@ -149,7 +150,8 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                 vol = common.area * h
                 zmid = max(sa.z0 + zoff[a], sb.z0 + zoff[b]) + h / 2
                 if vol > settings.interference_tolerance:
-                    w.angles += 1
+                    if w.last_n != n:
+                        w.angles, w.last_n = w.angles + 1, int(n)
                     if vol > w.volume:
                         c = common.centroid
                         w.volume, w.n_vol, w.where2d = vol, int(n), (c.x, c.y, zmid)
