@@ -62,6 +62,8 @@ def oversize_parts(kit: Kit) -> list[tuple[str, str, np.ndarray]]:
     env = np.sort(np.asarray(kit.params.printer.envelope, dtype=float))
     out = []
     for p in kit.parts:
+        if not p.printed:
+            continue
         v, _ = mesh_arrays(p.solid)
         ext = np.sort(v.max(axis=0) - v.min(axis=0))
         if np.any(ext > env + 1e-9):
@@ -148,7 +150,7 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
     except DesignError as e:
         raise ConfigError(loaded.path, e.key_path, e.problem) from None
     result = check_kit(kit, samples, progress)
-    groups = group_parts([printed(p) for p in kit.parts])
+    groups = group_parts([printed(p) for p in kit.parts if p.printed])
     if kit_dir is not None:
         stale = [f"{g[0].part.name}.stl" for g in groups
                  if not (kit_dir / f"{g[0].part.name}.stl").is_file()
@@ -244,7 +246,7 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
     loaded, kit, result, _ = check(path, samples, write_plates=False)
     mech, params = loaded.mechanism, loaded.params
     from .export.kit import group_parts, printed
-    groups = group_parts([printed(p) for p in kit.parts])
+    groups = group_parts([printed(p) for p in kit.parts if p.printed])
     with tempfile.TemporaryDirectory() as tmpdir:
         tmp = Path(tmpdir)
         say("trace")
@@ -278,9 +280,14 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
     stages = [[s.j, str(s.ratio), f"{s.D.teeth} / {s.M.teeth} / {s.G.teeth}",
                f"{s.D.profile_shift:.3f} / {s.M.profile_shift:.3f} / {s.G.profile_shift:.3f}",
                r6(s.a_DM), r6(s.a_MG), f"({s.idler[0]:.2f}, {s.idler[1]:.2f})"] for s in mech.stages]
+    belts = [[s.j, str(s.ratio), f"{s.D.teeth} / {s.G.teeth}", s.belt_teeth, r6(s.slack),
+              "–" if s.tensioner is None else f"({s.tensioner[0]:.2f}, {s.tensioner[1]:.2f})", r6(s.link_change)]
+             for s in mech.belt_stages]
     design = (R.table(["link", "name", "speed", "length mm", "initial angle °", "speed as built"], links, left=2)
-              + R.table(["stage", "Eq 11 ratio", "teeth D / M / G", "profile shift D / M / G", "a_DM mm", "a_MG mm",
-                         "idler (link frame) mm"], stages, left=1)
+              + (R.table(["stage", "Eq 11 ratio", "teeth D / M / G", "profile shift D / M / G", "a_DM mm", "a_MG mm",
+                          "idler (link frame) mm"], stages, left=1) if stages else "")
+              + (R.table(["stage", "Eq 11 ratio", "pulley teeth D / G", "belt teeth", "slack taken up mm",
+                          "tensioner (link frame) mm", "link change mm"], belts, left=1) if belts else "")
               + f"<p>Module {params.system.module:g} mm, pressure angle {math.degrees(params.system.pressure_angle):g}°, "
               f"backlash {params.system.backlash_per_gear:g} mm per gear, face width {params.face_width:g} mm, "
               f"printer {html_escape(params.printer.name)}, material {html_escape(params.material)}.</p>")

@@ -101,6 +101,8 @@ class Kit:
         for name, p in gp.items():
             layer = 0 if name in ("G1", "drive") else int(name[1:]) - (1 if name[0] == "G" else 0)
             out[name] = _T(p.centre[0], p.centre[1], st.layer(layer), p.angle)
+        for s in mech.belt_stages:  # a belt keeps its shape in its link's frame
+            out[f"belt{s.j}"] = _T(J[s.j - 1][0], J[s.j - 1][1], st.layer(s.j), a[s.j])
         drive = gp["drive"]
         for name in ("drive_axle", "crank"):
             z = 0.0 if name == "drive_axle" else -self.params.base_thickness - st.gap
@@ -155,6 +157,32 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
         loose(f"D{s.j}", s.D, "D")
         loose(f"M{s.j}", s.M, "round")
         fixed(f"G{s.j + 1}", s.G)
+    params_belts = mech.belt_stages and _belts(mech)
+    for s in mech.belt_stages:
+        bs = params_belts
+        prof = s.D.profile
+        for name, pulley, hole in ((f"D{s.j}", s.D, "D"), (f"G{s.j + 1}", s.G, "round")):
+            section = P.pulley_outline(pulley.teeth, prof.pitch, prof.pitch_line_offset, prof.groove_depth,
+                                       prof.groove_radius, FEATURE_TOL)
+            body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f, holes[hole],
+                                 FEATURE_TOL)
+            if name[0] == "G":
+                collar_r = min(rb + 2.0, pulley.root_radius - 0.5)
+                body = P.fixed_hub(body, f, bore_r, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
+            add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
+                                                 ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4)))))
+        if s.tensioner is not None:
+            r = s.tensioner_radius
+            roller = P.prisms([(P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
+                               (P.annulus(bore_r, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
+                               (P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
+            add(Part(f"T{s.j}", "idler", roller))
+        _, path = belt_path_of(s, prof)
+        z0 = bs.flange_thickness + 0.1
+        band = P.belt_band(path, prof.pitch_line_offset + prof.groove_depth, prof.back_height, z0, z0 + prof.width)
+        add(Part(f"belt{s.j}", "belt", band, printed=False,
+                 info=(("profile", prof.name), ("teeth", s.belt_teeth), ("length_mm", s.belt_teeth * prof.pitch),
+                       ("width_mm", prof.width))))
 
     # link plates
     pen_spigot = DFit(params.pen_diameter / 2 + PEN_WALL, jn.press_clearance)
@@ -163,15 +191,16 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
         S, Pz = link.length, st.plate_z(j)
         feats, idler, distal_hole = [], None, None
         if j < n:
-            stage = mech.stages[j - 1]
+            stage = (mech.stages or mech.belt_stages)[j - 1]
             top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
             feats += [(P.annulus(ra, rb, FEATURE_TOL, (S, 0.0)), t, t + g),
                       (P.disc(ra, FEATURE_TOL, (S, 0.0)), t, top - Pz)]
             if j + 1 < n:
                 feats.append((P.translate2d(post.shaft(FEATURE_TOL), S, 0.0), top - Pz, top - Pz + f))
-            c = stage.idler
-            feats += [(P.annulus(ra, rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
-            idler = (c, ra + params.boss_wall)
+            c = stage.idler if mech.stages else stage.tensioner
+            if c is not None:
+                feats += [(P.annulus(ra, rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
+                idler = (c, ra + params.boss_wall)
             distal = (S, ra + params.boss_wall)
         else:
             distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
@@ -242,4 +271,29 @@ def _contacts(mech: Mechanism, params: KitParams, st: Stack, n_legs: int) -> tup
                 Contact(f"M{j}", f"B{j}", "running", body(j), run), Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
                 Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
                 Contact(f"D{j}", f"M{j}", "mesh"), Contact(f"M{j}", f"G{j + 1}", "mesh")]
+    for s in mech.belt_stages:
+        j = s.j
+        carrier = "base" if j == 1 else f"B{j - 1}"
+        out += [Contact(f"D{j}", carrier, "press", body(j), press), Contact(f"D{j}", f"G{j}", "thrust"),
+                Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
+                Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
+                Contact(f"belt{j}", f"D{j}", "belt"), Contact(f"belt{j}", f"G{j + 1}", "belt")]
+        if s.tensioner is not None:
+            out += [Contact(f"T{j}", f"B{j}", "running", body(j), run), Contact(f"belt{j}", f"T{j}", "belt")]
     return tuple(out)
+
+
+def _belts(mech: Mechanism):
+    """The belt settings a belt mechanism was made with (flanges, tensioner): kept on its stages."""
+    return mech.belt_stages[0].settings
+
+
+def belt_path_of(stage, profile):
+    """The pitch path of a belt stage in its link frame: around D, the tensioner (if any) and G."""
+    from ..design.belt import belt_path
+    D = ((0.0, 0.0), stage.D.pitch_radius, 1)
+    G = ((stage.length, 0.0), stage.G.pitch_radius, 1)
+    if stage.tensioner is None:
+        return belt_path([D, G])
+    T = (stage.tensioner, stage.tensioner_radius + profile.back_height, -1)
+    return belt_path([D, T, G] if stage.tensioner[1] < 0 else [G, T, D])

@@ -29,7 +29,7 @@ def check_fits(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, angle
     poses = [kit.poses(float(t)) for t in picks]
     findings, rows = [], []
     for c in kit.contacts:
-        if c.kind == "mesh":
+        if c.kind in ("mesh", "belt"):
             continue
         ga, gb = geo[c.a], geo[c.b]
         worst = (0.0, 0, None)

@@ -13,6 +13,7 @@ from .findings import Finding, Result
 from .fits import check_fits
 from .meshing import check_meshes
 from .motion import prepare, sample_angles, sweep
+from .belts import check_belts
 from .printability import check_printability
 
 __all__ = ["check_kit", "printed_extents"]
@@ -23,6 +24,8 @@ def printed_extents(kit: Kit) -> dict[str, np.ndarray]:
     about x keeps them)."""
     out = {}
     for p in kit.parts:
+        if not p.printed:
+            continue
         v, _ = mesh_arrays(p.solid)
         out[p.name] = v.max(axis=0) - v.min(axis=0)
     return out
@@ -50,6 +53,10 @@ def check_kit(kit: Kit, samples: int | None = None, progress=None) -> Result:
     res.add(*found)
     found, printing = check_printability(kit, geo, printed_extents(kit))
     res.add(*found)
+    found, belts = check_belts(kit)
+    res.add(*found)
+    if belts:
+        res.figures["belts"] = belts
     t4 = time.perf_counter()
     pairs = len(kit.parts) * (len(kit.parts) - 1) // 2
     res.figures.update(

@@ -6,8 +6,9 @@ from __future__ import annotations
 import math
 
 from ..design import curve as curves
+from ..design.belt import BeltProfile
 from ..design.gearing import ToothSystem
-from ..design.mechanism import CheckSettings, Joints, KitParams, MechanismInputs, PrinterLimits
+from ..design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, MechanismInputs, PrinterLimits
 from ..design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ..errors import ConfigError
 from .loader import LoadedDesign
@@ -61,8 +62,15 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     )
     teeth = None if d.teeth == "auto" else tuple((t.D, t.M, t.G) for t in d.teeth)
     idlers = None if d.teeth == "auto" else tuple(tuple(t.idler_mm) if t.idler_mm else None for t in d.teeth)
+    belts = None
+    if d.belts is not None:
+        b = d.belts
+        belts = BeltSettings(BeltProfile(b.profile, b.pitch_mm, b.pitch_line_offset_mm, b.groove_depth_mm,
+                                         b.groove_radius_mm, b.back_height_mm, b.width_mm),
+                             tuple(b.stock_teeth), b.flange_height_mm, b.flange_thickness_mm, b.tensioner_radius_mm,
+                             b.tensioner_gap_mm)
     inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped, idlers,
-                             "curve" if d.curve is not None else "table")
+                             "curve" if d.curve is not None else "table", belts)
     j = d.joints
     params = KitParams(
         name=d.name,

@@ -167,6 +167,23 @@ class Pen(Strict):
     holder_height_mm: Pos = 20.0
 
 
+class Belts(Strict):
+    """Timing belts instead of idler gears: each D_j drives G_{j+1} through a stock closed belt."""
+
+    profile: str = "GT2"
+    pitch_mm: Pos = 2.0
+    pitch_line_offset_mm: NonNeg = 0.254
+    groove_depth_mm: Pos = 0.75
+    groove_radius_mm: Pos = 0.555
+    back_height_mm: Pos = 0.63
+    width_mm: Pos = 6.0
+    stock_teeth: Annotated[list[Annotated[int, Field(ge=20, le=5000)]], Field(min_length=1)]
+    flange_height_mm: Pos = 1.5
+    flange_thickness_mm: Pos = 1.0
+    tensioner_radius_mm: Pos = 7.0
+    tensioner_gap_mm: NonNeg = 0.5
+
+
 class Checks(Strict):
     """What `partgen check` holds a kit to."""
 
@@ -199,12 +216,15 @@ class Design(Strict):
     base: Base = Base()
     pen: Pen = Pen()
     checks: Checks = Checks()
+    belts: Belts | None = None
     material: Material
 
     @model_validator(mode="after")
     def _one_source(self):
         if (self.curve is None) == (self.links is None):
             raise ValueError("give exactly one of 'curve' (derive the links) or 'links' (a design table)")
+        if self.belts is not None and self.teeth != "auto":
+            raise ValueError("a belt design chooses its pulleys: give 'teeth: auto'")
         if self.target is not None and self.curve is not None:
             raise ValueError("'target' is for design tables ('links'); a 'curve' design is traced against its curve")
         return self

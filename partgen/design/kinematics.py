@@ -68,6 +68,12 @@ def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
                      a[j] - (s.D.teeth / s.M.teeth) * rel_d),
             GearPose(f"G{j + 1}", j + 1, tuple(J[j]), a[j + 1]),
         ]
+    for s in mech.belt_stages:  # pulleys turn with what they are fixed to; the belt's tensioner with its link
+        j = s.j
+        out += [GearPose(f"D{j}", j - 1, tuple(J[j - 1]), a[j - 1]), GearPose(f"G{j + 1}", j + 1, tuple(J[j]), a[j + 1])]
+        if s.tensioner is not None:
+            t = _rot(a[j], s.tensioner)
+            out.append(GearPose(f"T{j}", j, (J[j - 1][0] + t[0], J[j - 1][1] + t[1]), a[j]))
     return out
 
 
@@ -92,7 +98,7 @@ def clockings(mech: Mechanism) -> dict[str, float]:
     is turned so it interleaves with its driver at θ = 0."""
     teeth = dict(mech.gears)
     poses = {p.name: p for p in _raw_poses(mech, 0.0)}
-    clock = {name: 0.0 for name in teeth}
+    clock = {name: 0.0 for name in teeth}  # pulleys need none: a belt takes any tooth phase
     for a, b in mesh_pairs(mech):
         pa = GearPose(a, poses[a].carrier, poses[a].centre, poses[a].angle + clock[a])
         err = _phase(pa, teeth[a].teeth, poses[b], teeth[b].teeth)
@@ -103,7 +109,7 @@ def clockings(mech: Mechanism) -> dict[str, float]:
 def gear_poses(mech: Mechanism, theta: float, clock: dict[str, float] | None = None) -> dict[str, GearPose]:
     """Every gear's pose at crank angle θ, clocked (``clock`` defaults to ``clockings(mech)``)."""
     clock = clockings(mech) if clock is None else clock
-    return {p.name: GearPose(p.name, p.carrier, p.centre, p.angle + clock[p.name]) for p in _raw_poses(mech, theta)}
+    return {p.name: GearPose(p.name, p.carrier, p.centre, p.angle + clock.get(p.name, 0.0)) for p in _raw_poses(mech, theta)}
 
 
 def mesh_phase_error(mech: Mechanism, theta: float, clock: dict[str, float] | None = None) -> dict[tuple[str, str], float]:

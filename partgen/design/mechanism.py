@@ -11,6 +11,8 @@ from dataclasses import dataclass, field, replace
 
 from ..errors import DesignError
 from . import involute
+from .belt import BeltProfile, BeltStage, design_belt_stage
+from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
 from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
@@ -86,6 +88,18 @@ class KitParams:
 
 
 @dataclass(frozen=True)
+class BeltSettings:
+    """Timing belts instead of idler gears (mm)."""
+
+    profile: BeltProfile
+    stock_teeth: tuple[int, ...]
+    flange_height: float
+    flange_thickness: float
+    tensioner_radius: float
+    tensioner_gap: float
+
+
+@dataclass(frozen=True)
 class MechanismInputs:
     """The chain (links in mm/rad), explicit teeth per stage or None for auto, stage margins."""
 
@@ -98,6 +112,7 @@ class MechanismInputs:
     dropped: tuple[str, ...] = ()
     idlers: tuple[tuple[float, float] | None, ...] | None = None  # hand-placed idlers per stage
     source: str = "curve"  # "curve": links derived from ``curve``; "table": a design table (curve = its target)
+    belts: BeltSettings | None = None
 
 
 @dataclass(frozen=True)
@@ -113,6 +128,13 @@ class Mechanism:
     dropped: tuple[str, ...] = ()
     auto_teeth: bool = True
     source: str = "curve"
+    belt_stages: tuple[BeltStage, ...] = ()
+    design_chain: Chain | None = None  # the chain the design asks for (a belt stage may change a link)
+
+    @property
+    def couplings(self) -> list[tuple[int, int]]:
+        """(T_D, T_G) of every stage, gear or belt, in chain order."""
+        return [(s.D.teeth, s.G.teeth) for s in (self.stages or self.belt_stages)]
 
     @property
     def gears(self) -> list[tuple[str, GearSpec]]:
@@ -121,6 +143,10 @@ class Mechanism:
         for s in self.stages:
             out += [(f"D{s.j}", s.D), (f"M{s.j}", s.M), (f"G{s.j + 1}", s.G)]
         return out
+
+
+def pitch_diameter_belt(teeth: int, profile: BeltProfile) -> float:
+    return _pd(teeth, profile.pitch)
 
 
 def check_generable(gear: GearSpec) -> None:
@@ -153,6 +179,8 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
                                     f"links[{j - 1}].length_mm"))
     ratios = eq11_ratios(inputs.chain.speeds)
     stages = []
+    if inputs.belts is not None:
+        return _belt_mechanism(inputs, params, ratios, findings)
     if inputs.teeth is None:
         for j, (link, r) in enumerate(zip(links, ratios), 1):
             stages.append(choose_stage(j, link.length, r, system, limits))
@@ -175,4 +203,38 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     a = centre_distance(G1, drive)
     drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
-                     inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source)
+                     inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
+                     inputs.chain)
+
+
+def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings) -> Mechanism:
+    """Belt stages for every coupled link; a link without room for a tensioner changes length."""
+    from dataclasses import replace as _replace
+
+    b = inputs.belts
+    # the smallest pulley whose grooves leave a hub wall around the bore
+    z_min = 10
+    while True:
+        root = pitch_diameter_belt(z_min, b.profile) / 2 - b.profile.pitch_line_offset - b.profile.groove_depth
+        if root >= params.bore / 2 + params.hub_wall:
+            break
+        z_min += 1
+    links = list(inputs.chain.links)
+    stages = []
+    for j, (link, r) in enumerate(zip(links, ratios), 1):
+        side = -1 if (0 if j == 1 else links[j - 2].speed) - link.speed > 0 else 1  # the slack span
+        st = _replace(design_belt_stage(j, link.length, r, b.profile, b.stock_teeth, z_min, b.flange_height,
+                                        b.tensioner_radius, b.tensioner_gap, side), settings=b)
+        stages.append(st)
+        if st.tensioner is None:
+            links[j - 1] = _replace(link, length=st.length)
+            findings.append(Finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
+                                    f"{st.link_change:+.3f} mm so a {st.belt_teeth}-tooth belt fits", "belts"))
+    system = params.system
+    G1, drive = make_gear(params.drive_teeth, system), make_gear(params.drive_teeth, system)
+    check_generable(G1)
+    a = centre_distance(G1, drive)
+    drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
+    chain = Chain(tuple(links), inputs.chain.offset)
+    return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
+                     True, inputs.source, tuple(stages), inputs.chain)

@@ -24,8 +24,8 @@ __all__ = ["built_speeds", "built_chain", "Deviation", "deviation", "hausdorff",
 def built_speeds(mech: Mechanism) -> tuple[Fraction, ...]:
     """World speed of each link (crank turns: one per cycle) as its gears make it, exact."""
     w = [Fraction(0), Fraction(mech.drive.teeth, mech.G1.teeth)]
-    for s in mech.stages:
-        w.append(w[-1] + Fraction(s.D.teeth, s.G.teeth) * (w[-2] - w[-1]))
+    for td, tg in mech.couplings:
+        w.append(w[-1] + Fraction(td, tg) * (w[-2] - w[-1]))
     return tuple(w[1:])
 
 
@@ -38,7 +38,7 @@ def built_chain(mech: Mechanism) -> Chain:
 def target_paths(mech: Mechanism, theta: np.ndarray) -> dict[str, np.ndarray]:
     """(n,) complex mm: the full Fourier series of the target curve ("full") and the chain the
     design asks for, with ideal speeds ("pruned")."""
-    out = {"pruned": trace(mech.chain, theta)}
+    out = {"pruned": trace(mech.design_chain or mech.chain, theta)}
     if mech.curve is not None:
         out["full"] = mech.curve.evaluate(theta) * mech.scale
     return out

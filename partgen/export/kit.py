@@ -103,10 +103,15 @@ def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
     return {"design": design, "parts": parts}
 
 
-def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], theta: float = 0.0) -> bytes:
-    """A GLB scene of every part at crank angle θ (one node per instance, meshes shared)."""
+def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] = (), theta: float = 0.0) -> bytes:
+    """A GLB scene of every part at crank angle θ (one node per instance, meshes shared), bought
+    parts (belts) included."""
     poses = kit.poses(theta)
     scene = trimesh.Scene()
+    for p in bought:
+        v, f = mesh_arrays(p.solid)
+        scene.add_geometry(trimesh.Trimesh(v, f, process=False), node_name=p.name, geom_name=p.name,
+                           transform=poses[p.name])
     for grp in groups:
         geom_name = grp[0].part.name
         for it in grp:
@@ -149,7 +154,7 @@ def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] 
     """Write the kit into ``dest`` atomically; returns the manifest."""
     say = progress or (lambda name: None)
     items, done = [], {}
-    for p in kit.parts:
+    for p in (p for p in kit.parts if p.printed):
         say(p.name)
         key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
         if key not in done:
@@ -157,9 +162,12 @@ def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] 
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
     man = manifest(kit, groups, design)
+    bought = [p for p in kit.parts if not p.printed]
+    if bought:
+        man["purchased"] = [{"name": p.name, "role": p.role, **dict(p.info)} for p in bought]
     files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
     files["manifest.json"] = (json.dumps(man, indent=1) + "\n").encode()
-    files["assembly.glb"] = assembly_glb(kit, groups)
+    files["assembly.glb"] = assembly_glb(kit, groups, bought)
     files.update(extra_files or {})
     with atomic_dir(dest) as tmp:
         for name, data in files.items():

@@ -8,9 +8,11 @@ relative to its D (``clocking``): that is how the tooth phase an assembly needs 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import manifold3d as m3d
+import numpy as np
 import shapely
 from shapely import affinity
 from shapely.geometry import Polygon
@@ -28,7 +30,8 @@ FLAT_DEPTH = 1.0  # mm: a D's flat sits this far inside its circle
 
 @dataclass(frozen=True)
 class Part:
-    """A part as designed: its solid in the local frame; ``print_flip`` prints it upside down."""
+    """A part as designed: its solid in the local frame; ``print_flip`` prints it upside down;
+    ``printed`` False for a bought part (a belt), modelled for the checks but not exported."""
 
     name: str
     role: str
@@ -36,6 +39,8 @@ class Part:
     print_flip: bool = False
     gear: GearSpec | None = None
     clocking: float = 0.0
+    printed: bool = True
+    info: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -68,6 +73,14 @@ def fixed_gear(spec: GearSpec, face_width: float, bore_radius: float, collar: tu
     (radius, height) that spaces the plate, and a D-boss of ``boss_height`` that presses into
     the plate's D-hole; one round bore runs through all of it. The boss is turned by -clocking so
     that, with the boss's flat aligned to the plate's, tooth 0 sits at ``clocking``."""
+    bore = circle(bore_radius, max(tol, 0.005), hole=True)
+    return fixed_hub(gear_body(spec, face_width, bore), face_width, bore_radius, collar, boss, boss_height, clocking, tol)
+
+
+def fixed_hub(body: m3d.Manifold, face_width: float, bore_radius: float, collar: tuple[float, float], boss: DFit,
+              boss_height: float, clocking: float, tol: float) -> m3d.Manifold:
+    """``body`` (spanning [0, face_width], bored) with the collar and D-boss of a part fixed to
+    the plate above it (see ``fixed_gear``)."""
     tol_f = max(tol, 0.005)
     bore = circle(bore_radius, tol_f, hole=True)
     collar_r, collar_h = collar
@@ -75,7 +88,35 @@ def fixed_gear(spec: GearSpec, face_width: float, bore_radius: float, collar: tu
     z1 = face_width + collar_h
     hub = prisms([(circle(collar_r, tol_f).difference(bore), face_width, z1),
                   (boss_shape.difference(bore), z1, z1 + boss_height)])
-    return union([gear_body(spec, face_width, bore), hub])
+    return union([body, hub])
+
+
+def pulley_outline(teeth: int, pitch: float, pitch_line_offset: float, groove_depth: float, groove_radius: float,
+                   tol: float) -> Polygon:
+    """A timing pulley's toothed section: its outside circle less ``teeth`` round-bottomed grooves
+    (an arc of ``groove_radius`` whose bottom is ``groove_depth`` under the outside radius)."""
+    r_out = teeth * pitch / (2 * math.pi) - pitch_line_offset
+    grooves = [circle(groove_radius, tol, ((r_out - groove_depth + groove_radius) * math.cos(a),
+                                           (r_out - groove_depth + groove_radius) * math.sin(a)))
+               for a in 2 * math.pi * (np.arange(teeth) + 0.5) / teeth]
+    return circle(r_out, tol).difference(shapely.union_all(grooves))
+
+
+def pulley_body(section: Polygon, flange_radius: float, flange_thickness: float, face_width: float, hole: Polygon,
+                tol: float) -> m3d.Manifold:
+    """A flanged pulley [0, face_width]: flanges of ``flange_thickness`` either side of the toothed
+    ``section``, ``hole`` through it all."""
+    flange = circle(flange_radius, tol).difference(hole)
+    return prisms([(flange, 0.0, flange_thickness), (section.difference(hole), flange_thickness, face_width - flange_thickness),
+                   (flange, face_width - flange_thickness, face_width)])
+
+
+def belt_band(path: np.ndarray, inside: float, outside: float, z0: float, z1: float) -> m3d.Manifold:
+    """A closed belt between its pitch path ((n, 2) mm) offset ``inside`` inward and ``outside``
+    outward, from z0 to z1 (a purchased part: modelled to keep it clear of the rest)."""
+    loop = Polygon(path)
+    band = loop.buffer(outside, join_style="round").difference(loop.buffer(-inside, join_style="round"))
+    return prisms([(band, z0, z1)])
 
 
 def link_plate(length: float, thickness: float, proximal_hole: Polygon, proximal_r: float,
