@@ -17,8 +17,10 @@ from typing import Sequence
 import numpy as np
 
 from ..errors import DesignError
+from .drivetrain import ratio_multiples
 
-__all__ = ["BeltProfile", "Pulley", "BeltStage", "pitch_diameter", "open_length", "belt_path", "design_belt_stage"]
+__all__ = ["BeltProfile", "Pulley", "BeltStage", "pitch_diameter", "open_length", "centre_distance_for", "belt_path",
+           "design_belt_stage"]
 
 
 @dataclass(frozen=True)
@@ -86,6 +88,16 @@ def open_length(r1: float, r2: float, c: float) -> float:
     """Length of a belt over two pulleys of pitch radii r1, r2 at centre distance c (no idler)."""
     beta = math.asin((r1 - r2) / c)
     return 2 * c * math.cos(beta) + math.pi * (r1 + r2) + 2 * beta * (r1 - r2)
+
+
+def centre_distance_for(belt: float, r1: float, r2: float, lo: float) -> float:
+    """Centre distance (mm, above ``lo``) at which a belt of length ``belt`` fits two pulleys of
+    pitch radii r1, r2 with no idler (``open_length`` grows with the distance: bisection)."""
+    hi = max(lo, belt)
+    for _ in range(100):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if open_length(r1, r2, mid) < belt else (lo, mid)
+    return (lo + hi) / 2
 
 
 def _left(t: np.ndarray) -> np.ndarray:
@@ -173,12 +185,7 @@ def design_belt_stage(j: int, length: float, ratio: Fraction, profile: BeltProfi
     stock = sorted(set(int(t) for t in stock_teeth))
     r_e = idler_radius + profile.back_height
     tried = []
-    n = 1
-    while True:
-        zd, zg = ratio.numerator * n, ratio.denominator * n
-        n += 1
-        if min(zd, zg) < min_teeth:
-            continue
+    for zd, zg in ratio_multiples(ratio, min_teeth):
         D, G = Pulley(zd, profile), Pulley(zg, profile)
         fd, fg = D.outside_radius + flange, G.outside_radius + flange
         if fd + fg + gap > length:
@@ -193,24 +200,16 @@ def design_belt_stage(j: int, length: float, ratio: Fraction, profile: BeltProfi
             if pos is None:
                 break  # a longer belt needs a deeper push: no better
             # without a tensioner the link would have to change to the belt's centre distance
-            c_lo, c_hi = length, length + L
-            for _ in range(100):
-                mid = (c_lo + c_hi) / 2
-                c_lo, c_hi = (mid, c_hi) if open_length(D.pitch_radius, G.pitch_radius, mid) < L else (c_lo, mid)
+            c_free = centre_distance_for(L, D.pitch_radius, G.pitch_radius, length)
             circles = [((0.0, 0.0), D.pitch_radius, 1), (pos, r_e, -1), ((length, 0.0), G.pitch_radius, 1)]
             if side > 0:
                 circles = [circles[2], circles[1], circles[0]]
             return BeltStage(j, length, ratio, D, G, teeth, lo, pos, idler_radius, belt_path(circles)[0], 0.0,
-                             (c_lo + c_hi) / 2 - length)
+                             c_free - length)
     # no tensioner fits: change the link to the centre distance of the stock belt that needs the
     # smallest change
     best = None
-    n = 1
-    while True:
-        zd, zg = ratio.numerator * n, ratio.denominator * n
-        n += 1
-        if min(zd, zg) < min_teeth:
-            continue
+    for zd, zg in ratio_multiples(ratio, min_teeth):
         D, G = Pulley(zd, profile), Pulley(zg, profile)
         fd, fg = D.outside_radius + flange, G.outside_radius + flange
         if fd + fg + gap > 1.5 * length:
@@ -220,11 +219,7 @@ def design_belt_stage(j: int, length: float, ratio: Fraction, profile: BeltProfi
             c_min = max(fd + fg + gap, abs(D.pitch_radius - G.pitch_radius) + 1e-6)
             if open_length(D.pitch_radius, G.pitch_radius, c_min) > L:
                 continue
-            c_lo, c_hi = c_min, L
-            for _ in range(100):
-                mid = (c_lo + c_hi) / 2
-                c_lo, c_hi = (mid, c_hi) if open_length(D.pitch_radius, G.pitch_radius, mid) < L else (c_lo, mid)
-            c = (c_lo + c_hi) / 2
+            c = centre_distance_for(L, D.pitch_radius, G.pitch_radius, c_min)
             if best is None or abs(c - length) < abs(best[0] - length):
                 best = (c, D, G, teeth)
     if best is not None:

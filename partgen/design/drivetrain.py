@@ -121,6 +121,16 @@ def make_stage(j: int, length: float, ratio: Fraction, teeth: tuple[int, int, in
     return Stage(j, length, ratio, D, M, G, a_dm, a_mg, best)
 
 
+def ratio_multiples(ratio: Fraction, min_teeth: int):
+    """(T_D, T_G) = n·(numerator, denominator) for n = 1, 2, …, skipping pairs under min_teeth."""
+    n = 1
+    while True:
+        td, tg = ratio.numerator * n, ratio.denominator * n
+        n += 1
+        if min(td, tg) >= min_teeth:
+            yield td, tg
+
+
 def _min_teeth(limits: Limits, system: ToothSystem) -> int:
     """Smallest tooth count whose pitch and root diameters respect the limits (with its shift)."""
     for z in range(4, 1000):
@@ -140,12 +150,7 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
     """
     zmin = _min_teeth(limits, system)
     best, best_key = None, None
-    n = 1
-    while True:
-        td, tg = ratio.numerator * n, ratio.denominator * n
-        n += 1
-        if min(td, tg) < zmin:
-            continue
+    for td, tg in ratio_multiples(ratio, zmin):
         D, G = make_gear(td, system), make_gear(tg, system)
         if D.tip_radius + G.tip_radius + limits.tip_gap > length:
             break  # Eq 12 fails from here on: every larger n only grows the gears
