@@ -106,6 +106,9 @@ def finding_dict(f: Finding) -> dict:
 
 def build(path: str | Path, dest: str | Path | None = None, progress=None) -> tuple[Loaded, Kit, dict, Path]:
     """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made."""
+    raw = load_design(path)
+    if raw.design.__class__.__name__ == "WristDesign":
+        return build_wrist_kit(raw, dest, progress)
     loaded = load(path)
     try:
         kit = build_kit(loaded.mechanism, loaded.params, progress)
@@ -342,3 +345,29 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
 def html_escape(s: str) -> str:
     import html
     return html.escape(str(s))
+
+
+def build_wrist_kit(raw, dest=None, progress=None):
+    """Build a wrist gear pair (kind: wrist) into ``dest``: gear1.stl, gear2.stl, manifest, GLB."""
+    from .assembly.wrist import build_wrist
+    from .config.wrist import resolve_wrist
+    from .design.spherical import RangeError
+
+    spec = resolve_wrist(raw)
+    try:
+        kit = build_wrist(spec, progress)
+    except (RangeError, ValueError) as e:
+        raise ConfigError(raw.path, "wrist", str(e)) from None
+    env = np.sort(np.asarray(spec.printer.envelope, dtype=float))
+    for p in kit.parts:
+        v, _ = mesh_arrays(p.solid)
+        ext = np.sort(v.max(axis=0) - v.min(axis=0))
+        if np.any(ext > env + 1e-9):
+            raise ConfigError(raw.path, "wrist.centre_distance_mm", f"{p.name} measures {ext.round(1)} mm and does not "
+                              "fit the printer in any orientation")
+    loaded = Loaded(raw.path, None, kit.params, raw.printer_path)
+    design = {"name": spec.name, "kind": "wrist", "config": raw.path.name, "nominal_ratio": spec.I,
+              "centre_distance_mm": spec.A, "longitudinal_pitch_mm": spec.long_pitch, **kit.figures}
+    dest = Path(dest) if dest is not None else Path("out") / spec.name
+    man = write_kit(kit, dest, design, design_files(loaded), progress=progress)
+    return loaded, kit, man, dest

@@ -40,6 +40,12 @@ def run(args) -> int:
     loaded, kit, man, dest = pipeline.build(args.config, args.out, progress)
     progress.done()
     mech = loaded.mechanism
+    if mech is None:  # a wrist pair
+        for p in man["parts"]:
+            print(f"{p['name']:<8}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 {p['mass_g']:7.1f} g  "
+                  f"{' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm")
+        print(f"wrote {dest}/ in {time.perf_counter() - t0:.2f} s")
+        return 0
     for f in mech.findings:
         if f.severity == "warning":
             print(f"partgen: warning: {loaded.path}: {f.key_path}: {f.message}", file=sys.stderr)

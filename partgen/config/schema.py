@@ -10,7 +10,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, model_validator
 
-__all__ = ["Printer", "Design"]
+__all__ = ["Printer", "Design", "WristDesign"]
 
 Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
@@ -228,3 +228,40 @@ class Design(Strict):
         if self.target is not None and self.curve is not None:
             raise ValueError("'target' is for design tables ('links'); a 'curve' design is traced against its curve")
         return self
+
+
+class Tooth(Strict):
+    shape: Literal["dome"] = "dome"
+    radius_mm: Pos
+    height_mm: Pos
+
+
+class Sweep(Strict):
+    theta_steps: Annotated[int, Field(ge=2, le=200)] = 8
+    psi_steps: Annotated[int, Field(ge=4, le=720)] = 24
+
+
+class Wrist(Strict):
+    """A spherical (nominal_ratio 1) or quasi-ellipsoidal wrist gear pair."""
+
+    nominal_ratio: Annotated[float, Field(gt=0.2, lt=5)]
+    centre_distance_mm: Pos
+    longitudinal_pitch_mm: Pos
+    ring_teeth: Annotated[list[Annotated[int, Field(ge=1, le=200)]], Field(min_length=2)] = [1, 6, 12]
+    tooth: Tooth
+    clearance_radial_mm: float
+    max_bend_deg: Annotated[float, Field(gt=0, lt=180)]
+    sweep: Sweep = Sweep()
+    shaft_diameter_mm: Pos
+    press_fit_clearance_diametral_mm: float = 0.05
+    base_height_mm: Pos = 8.0
+    chord_tolerance_mm: Annotated[float, Field(ge=1e-3, le=0.5)] = 0.02
+
+
+class WristDesign(Strict):
+    kind: Literal["wrist"]
+    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
+    description: str = ""
+    printer: str
+    wrist: Wrist
+    material: Material

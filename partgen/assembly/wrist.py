@@ -1,0 +1,104 @@
+"""A wrist gear pair as parts: gear 1 (dome teeth) and gear 2 (swept sockets), and gear 2's pose
+for any bend (θ, ψ) of the workspace."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..design import spherical as sph
+from ..design.spherical import WristSpec
+from ..geometry import wrist as W
+
+from ..geometry.parts import DFit, Part
+from ..geometry.solid import extrude
+
+__all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max"]
+
+
+@dataclass(frozen=True)
+class WristParams:
+    name: str
+    density: float
+    material: str
+    printer: object
+
+
+@dataclass(frozen=True)
+class WristKit:
+    spec: WristSpec
+    pair: sph.WristPair
+    parts: tuple[Part, ...]
+    domes: tuple[W.Dome, ...]
+    theta_max: float
+    params: WristParams
+    figures: dict = field(default_factory=dict)
+
+    def pose2(self, theta: float, psi: float) -> np.ndarray:
+        """(4, 4) pose of gear 2 for a bend (θ, ψ); gear 1 stays at the origin."""
+        return sph.gear2_pose(theta, psi, self.spec.I, self.spec.A)
+
+    def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
+        """Poses at rest (θ = 0: straight) — the assembly the manifest places."""
+        return {"gear1": np.eye(4), "gear2": self.pose2(0.0, 0.0)}
+
+
+def workspace_theta_max(I: float, max_bend: float) -> float:
+    """Largest θ on gear 1 with θ + φ(θ) ≤ max_bend (the bend angle between the axes)."""
+    lo, hi = 0.0, sph.valid_end(I)
+    for _ in range(80):
+        mid = (lo + hi) / 2
+        lo, hi = (mid, hi) if mid + float(sph.mating_angle(mid, I)) < max_bend else (lo, mid)
+    return lo
+
+
+def build_wrist(spec: WristSpec, progress=None) -> WristKit:
+    say = progress or (lambda s: None)
+    I, A = spec.I, spec.A
+    pair = sph.tooth_rows(I, A, spec.long_pitch, spec.ring_teeth)
+    end = sph.valid_end(I)
+    theta_max = workspace_theta_max(I, spec.max_bend)
+    r_of1 = lambda a: sph.pitch_radii(np.clip(a, 0, end), I, A)[0]  # noqa: E731
+    th_of = lambda b: 2 * np.arctan(np.tan(np.asarray(b) / 2) / I)  # noqa: E731  (gear 2's angle → θ)
+    r_of2 = lambda b: sph.pitch_radii(np.clip(th_of(b), 0, end), I, A)[1]  # noqa: E731
+    # the caps reach past the last ring and past the workspace's contact by a dome radius
+    last = pair.rows[-1].theta
+    ang_margin = (spec.dome_radius + spec.clearance) / float(r_of1(np.array([last]))[0])
+    alpha1 = min(end, max(last, theta_max) + 2 * ang_margin)
+    alpha2 = min(math.pi / 2, float(sph.mating_angle(alpha1, I)))
+    fit = DFit(spec.shaft_diameter / 2, spec.press_clearance)
+    parts = []
+    say("gear1")
+    cap1 = W.revolved_cap(r_of1, alpha1, -spec.base_height, fit.radius + 3.0, spec.tol)
+    domes = W.dome_teeth([(r.theta, r.teeth) for r in pair.rows], r_of1, spec.dome_radius, spec.tooth_height)
+    segs = max(24, int(round(2 * math.pi * spec.dome_radius / 0.5)))
+    bore = extrude(fit.hole(0.01), spec.base_height + A / 4, -spec.base_height - 1.0)
+    gear1 = (cap1 + _union(W.dome_solid(domes, 0.0, segs))) - bore
+    parts.append(Part("gear1", "wrist_gear", gear1))
+    say("gear2 sockets")
+    thetas = np.linspace(0.0, theta_max, spec.theta_steps)
+    psis = 2 * np.pi * np.arange(spec.psi_steps) / spec.psi_steps
+    poses = np.array([[np.linalg.inv(sph.gear2_pose(t, p, I, A)) for p in psis] for t in thetas])
+    reach = float(r_of2(np.array([alpha2]))[0]) + 1.0
+    sweep, pieces = W.socket_sweep(domes, poses, spec.clearance, reach, segs)
+    cap2 = W.revolved_cap(r_of2, alpha2, -spec.base_height, fit.radius + 3.0, spec.tol)
+    gear2 = (cap2 - sweep) - bore
+    parts.append(Part("gear2", "wrist_gear", gear2))
+    figures = {"rows": [{"k": r.k, "teeth": r.teeth, "theta_deg": round(math.degrees(r.theta), 4),
+                         "phi_deg": round(math.degrees(r.phi), 4), "lat_pitch_mm": round(r.lat_pitch_1, 4),
+                         "lat_pitch_vs_long": round(r.lat_pitch_1 / spec.long_pitch - 1, 5) if r.k else None}
+                        for r in pair.rows],
+               "theta_max_deg": round(math.degrees(theta_max), 4), "valid_end_deg": round(math.degrees(end), 4),
+               "cap_deg": [round(math.degrees(alpha1), 4), round(math.degrees(alpha2), 4)],
+               "sweep_pieces": pieces, "sweep_poses": int(poses.shape[0] * poses.shape[1])}
+    return WristKit(spec, pair, tuple(parts), tuple(domes), theta_max,
+                    WristParams(spec.name, spec.density, spec.material, spec.printer), figures)
+
+
+def _union(solids):
+    import manifold3d as m3d
+    return m3d.Manifold.batch_boolean(list(solids), m3d.OpType.Add)
+
+

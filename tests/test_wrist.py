@@ -1,0 +1,115 @@
+"""Wrist gear pairs as built: watertight and printable, 19 dome teeth on gear 1, gear 2's swept
+sockets clear gear 1 everywhere in the workspace while its teeth stay engaged."""
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+import manifold3d as m3d
+import numpy as np
+import pytest
+import trimesh
+
+from partgen import pipeline
+from partgen.assembly.wrist import build_wrist
+from partgen.config.loader import load_design
+from partgen.config.wrist import resolve_wrist
+from partgen.design import spherical as sph
+from partgen.geometry import wrist as W
+from partgen.geometry.measure import intersection
+from partgen.testing import mesh_problems
+
+ROOT = Path(__file__).parent.parent
+CONFIGS = ["wrist_sphere", "wrist_quasi_ellipsoid"]
+
+
+@pytest.fixture(scope="module", params=CONFIGS)
+def built(request, tmp_path_factory):
+    cfg = ROOT / "configs" / f"{request.param}.yaml"
+    spec = resolve_wrist(load_design(cfg))
+    return spec, build_wrist(spec)
+
+
+def test_wrist_kits_build_watertight_and_fit(tmp_path):
+    for name in CONFIGS:
+        loaded, kit, man, folder = pipeline.build(ROOT / "configs" / f"{name}.yaml", tmp_path / name)
+        assert [p["name"] for p in man["parts"]] == ["gear1", "gear2"]
+        for p in man["parts"]:
+            mesh = trimesh.load(folder / p["file"], file_type="stl", force="mesh")
+            assert mesh_problems(mesh, kit.params.printer.envelope) == []
+            assert p["volume_mm3"] == pytest.approx(mesh.volume, rel=1e-6)
+
+
+def _blank(spec, kit, gear):
+    end = sph.valid_end(spec.I)
+    if gear == 1:
+        r_of = lambda a: sph.pitch_radii(np.clip(a, 0, end), spec.I, spec.A)[0]  # noqa: E731
+    else:
+        th = lambda b: 2 * np.arctan(np.tan(np.asarray(b) / 2) / spec.I)  # noqa: E731
+        r_of = lambda b: sph.pitch_radii(np.clip(th(b), 0, end), spec.I, spec.A)[1]  # noqa: E731
+    return W.revolved_cap(r_of, math.radians(kit.figures["cap_deg"][gear - 1]), -spec.base_height, 8.0, spec.tol)
+
+
+def test_gear1_has_19_dome_teeth_of_the_designed_size(built):
+    """Count the teeth on the mesh: vertices standing more than half a tooth above the pitch
+    surface, grouped by proximity; each group's top is the tooth height above the surface."""
+    spec, kit = built
+    v = np.asarray(kit.parts[0].solid.to_mesh().vert_properties, dtype=float)[:, :3]
+    r = np.linalg.norm(v, axis=1)
+    alpha = np.arccos(np.clip(v[:, 2] / r, -1, 1))
+    inside = alpha <= math.radians(kit.figures["cap_deg"][0]) - 1e-6
+    end = sph.valid_end(spec.I)
+    height = r - sph.pitch_radii(np.clip(alpha, 0, end), spec.I, spec.A)[0]
+    high = v[inside & (height > 0.5 * spec.tooth_height)]
+    hh = height[inside & (height > 0.5 * spec.tooth_height)]
+    label = -np.ones(len(high), dtype=int)
+    n = 0
+    for i in range(len(high)):  # flood-fill groups of points closer than a dome radius
+        if label[i] >= 0:
+            continue
+        label[i], todo = n, [i]
+        while todo:
+            j = todo.pop()
+            near = np.flatnonzero((label < 0) & (np.linalg.norm(high - high[j], axis=1) < spec.dome_radius))
+            label[near] = n
+            todo.extend(near.tolist())
+        n += 1
+    assert n == sum(spec.ring_teeth) == 19
+    for k in range(n):
+        assert hh[label == k].max() == pytest.approx(spec.tooth_height, abs=0.1)
+
+
+def test_unit_ratio_pitch_surfaces_are_spheres(built):
+    spec, kit = built
+    if spec.I != 1.0:
+        pytest.skip("spheres only for I = 1")
+    v = np.asarray(kit.parts[1].solid.to_mesh().vert_properties)[:, :3]
+    r = np.linalg.norm(v, axis=1)
+    top = v[:, 2] > 0.7 * spec.A / 2  # the cap
+    assert (r[top] - spec.A / 2).max() < 1e-4  # nothing stands out of the sphere
+    assert (spec.A / 2 - r[top]).max() < spec.tooth_height + spec.clearance + 0.05  # sockets: a grown tooth deep
+    assert np.quantile(np.abs(r[top] - spec.A / 2), 0.2) < 0.01  # most of the cap is the sphere itself
+
+
+def test_sockets_clear_gear1_and_teeth_stay_engaged_over_the_workspace(built):
+    spec, kit = built
+    g1, g2 = kit.parts[0].solid, kit.parts[1].solid
+    domes = m3d.Manifold.batch_boolean(W.dome_solid(kit.domes, 0.0, 32), m3d.OpType.Add)
+    blank2 = _blank(spec, kit, 2)
+    rng = np.random.default_rng(7)
+    grid = [(t, p) for t in np.linspace(0, kit.theta_max, 4) for p in 2 * np.pi * np.arange(6) / 6]
+    off = [(rng.uniform(0, kit.theta_max), rng.uniform(0, 2 * np.pi)) for _ in range(12)]
+    for theta, psi in grid + off:
+        T = kit.pose2(theta, psi)
+        assert intersection(g1, np.eye(4), g2, T)[0] < 0.01, (theta, psi)
+        engaged = (domes ^ blank2.transform(T[:3, :])).volume()
+        assert engaged > 1.0, (theta, psi)
+
+
+def test_negative_clearance_sockets_interfere():
+    """Seeded fault: teeth shrunk relative to their sockets' cutters is fine, but sockets cut by
+    teeth *smaller* than the teeth (clearance -0.3 mm) must overlap gear 1."""
+    spec = resolve_wrist(load_design(ROOT / "configs" / "wrist_sphere.yaml"))
+    kit = build_wrist(replace(spec, clearance=-0.3, theta_steps=4, psi_steps=12))
+    T = kit.pose2(0.0, 0.0)
+    assert intersection(kit.parts[0].solid, np.eye(4), kit.parts[1].solid, T)[0] > 0.05
