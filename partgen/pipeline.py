@@ -147,6 +147,9 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
 
     target = Path(target)
     kit_dir = target if target.is_dir() else None
+    raw = load_design(target / "design.yaml" if kit_dir else target)
+    if raw.design.__class__.__name__ == "WristDesign":
+        return check_wrist_design(raw, progress)
     loaded = load(target / "design.yaml" if kit_dir else target)
     try:
         kit = build_kit(loaded.mechanism, loaded.params)
@@ -371,3 +374,14 @@ def build_wrist_kit(raw, dest=None, progress=None):
     dest = Path(dest) if dest is not None else Path("out") / spec.name
     man = write_kit(kit, dest, design, design_files(loaded), progress=progress)
     return loaded, kit, man, dest
+
+def check_wrist_design(raw, progress=None):
+    """`partgen check` of a wrist pair: the workspace sweep, engagement and play."""
+    from .assembly.wrist import build_wrist
+    from .checks.wrist import check_wrist
+    from .config.wrist import resolve_wrist
+
+    spec = resolve_wrist(raw)
+    kit = build_wrist(spec)
+    result = check_wrist(kit, progress=progress)
+    return Loaded(raw.path, None, kit.params, raw.printer_path), kit, result, None

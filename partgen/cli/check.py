@@ -42,7 +42,21 @@ class Bar:
             print("\r" + " " * 78 + "\r", end="", file=sys.stderr, flush=True)
 
 
+def _wrist_table(loaded, result, seconds: float) -> str:
+    f = result.figures
+    lines = [f"{loaded.params.name}: {f['poses']} poses over the workspace (bend ≤ {f['workspace_bend_deg']:g}°: a "
+             f"{f['grid'][0]} × {f['grid'][1]} (θ, ψ) grid and {f['random']} random poses)",
+             f"  largest overlap {f['max_overlap_mm3']:.4f} mm³, least tooth volume engaged {f['min_engaged_mm3']:.2f} mm³",
+             f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
+    lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
+    lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+    lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s")
+    return "\n".join(lines)
+
+
 def _table(loaded, result, folder, seconds: float) -> str:
+    if loaded.mechanism is None:
+        return _wrist_table(loaded, result, seconds)
     f = result.figures
     lines = [f"{loaded.params.name}: {f['parts']} parts, {f['pairs']} pairs, {f['samples']} crank angles over one turn"]
     counts = {}
