@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 
-import manifold3d as m3d
 import numpy as np
 
 from ..assembly.wrist import WristKit
@@ -54,7 +53,7 @@ def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: in
     th_of = lambda b: 2 * np.arctan(np.tan(np.asarray(b) / 2) / spec.I)  # noqa: E731
     r_of2 = lambda b: sph.pitch_radii(np.clip(th_of(b), 0, end), spec.I, spec.A)[1]  # noqa: E731
     blank2 = W.revolved_cap(r_of2, math.radians(kit.figures["cap_deg"][1]), -spec.base_height, 8.0, spec.tol)
-    domes = m3d.Manifold.batch_boolean(W.dome_solid(kit.domes, 0.0, 32), m3d.OpType.Add)
+    domes = W.domes_union(kit.domes)
     rng = np.random.default_rng(20260)
     poses = [(t, p) for t in np.linspace(0, kit.theta_max, grid[0]) for p in 2 * np.pi * np.arange(grid[1]) / grid[1]]
     poses += [(float(rng.uniform(0, kit.theta_max)), float(rng.uniform(0, 2 * np.pi))) for _ in range(random_poses)]
@@ -67,7 +66,7 @@ def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: in
         vol, where = intersection(g1, np.eye(4), g2, T)
         if vol > worst[0]:
             worst = (vol, (theta, psi, where))
-        engaged = (domes ^ blank2.transform(T[:3, :])).volume()
+        engaged = intersection(domes, np.eye(4), blank2, T)[0]
         if engaged < weakest[0]:
             weakest = (engaged, (theta, psi))
     if progress:

@@ -17,7 +17,7 @@ import numpy as np
 from .outline import segments_for
 from .solid import cross_section
 
-__all__ = ["Dome", "revolved_cap", "dome_teeth", "socket_sweep"]
+__all__ = ["Dome", "revolved_cap", "dome_teeth", "dome_solid", "domes_union", "socket_sweep"]
 
 
 @dataclass(frozen=True)
@@ -74,6 +74,11 @@ def dome_teeth(rows: Sequence[tuple[float, int]], radius_of: Callable[[np.ndarra
 
 def dome_solid(domes: Sequence[Dome], grow: float, segments: int) -> list[m3d.Manifold]:
     return [m3d.Manifold.sphere(d.radius + grow, segments).translate(d.centre) for d in domes]
+
+
+def domes_union(domes: Sequence[Dome], grow: float = 0.0, segments: int = 32) -> m3d.Manifold:
+    """All domes as one solid (radius + ``grow``)."""
+    return m3d.Manifold.batch_boolean(dome_solid(domes, grow, segments), m3d.OpType.Add)
 
 
 def socket_sweep(domes: Sequence[Dome], poses: np.ndarray, grow: float, reach: float, segments: int,
