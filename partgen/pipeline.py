@@ -208,6 +208,9 @@ def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | 
     from .export.kit import atomic_dir
     from .export.trace_plots import trace_animation, trace_figure
 
+    raw = load_design(path)
+    if raw.design.__class__.__name__ == "WristDesign":
+        return trace_wrist(raw, plots_dir)
     loaded = load(path)
     mech = loaded.mechanism
     theta = 2 * np.pi * np.arange(samples) / samples
@@ -385,3 +388,36 @@ def check_wrist_design(raw, progress=None):
     kit = build_wrist(spec)
     result = check_wrist(kit, progress=progress)
     return Loaded(raw.path, None, kit.params, raw.printer_path), kit, result, None
+
+
+def trace_wrist(raw, plots_dir=None):
+    """The wrist pair's ratio, mating angle and meridians (plots) and its tooth-row figures."""
+    from .assembly.wrist import workspace_theta_max
+    from .config.wrist import resolve_wrist
+    from .design import spherical as sph
+    from .export.kit import atomic_dir
+    from .export.wrist_plots import wrist_figure
+
+    spec = resolve_wrist(raw)
+    pair = sph.tooth_rows(spec.I, spec.A, spec.long_pitch, spec.ring_teeth)
+    theta_max = workspace_theta_max(spec.I, spec.max_bend)
+    end = sph.valid_end(spec.I)
+    ts, i_ode = sph.ratio_ode(end, spec.I, 2000)
+    t = np.linspace(0, end, 2001)
+    stats = {"kind": "wrist", "nominal_ratio": spec.I, "valid_end_deg": round(float(np.degrees(end)), 6),
+             "workspace_theta_max_deg": round(float(np.degrees(theta_max)), 6),
+             "ode_vs_closed_form_max": float(np.abs(i_ode - sph.ratio(ts, spec.I)).max()),
+             "mating_angle_methods_max_rad": float(np.abs(sph.mating_angle_meridian(t, spec.I)
+                                                           - sph.mating_angle_latitude(t, spec.I)).max()),
+             "rows": [{"k": r.k, "teeth": r.teeth, "theta_deg": round(float(np.degrees(r.theta)), 4),
+                       "phi_deg": round(float(np.degrees(r.phi)), 4), "lat_pitch_mm": round(r.lat_pitch_1, 4),
+                       "lat_pitch_off": round(r.lat_pitch_1 / spec.long_pitch - 1, 5) if r.k else None} for r in pair.rows]}
+    folder = None
+    if plots_dir is not False:
+        folder = Path(plots_dir) if plots_dir else Path("out") / spec.name / "trace"
+        with atomic_dir(folder) as tmp:
+            wrist_figure(spec.I, spec.A, theta_max, pair.rows, tmp / "wrist.png", tmp / "wrist.svg",
+                         f"{spec.name}: I = {spec.I:g}, centre distance {spec.A:g} mm")
+    from .assembly.wrist import WristParams
+    loaded = Loaded(raw.path, None, WristParams(spec.name, spec.density, spec.material, spec.printer), raw.printer_path)
+    return loaded, t, None, stats, folder

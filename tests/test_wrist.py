@@ -125,3 +125,18 @@ def test_wrist_check_passes_and_measures_play(built):
     for row in res.figures["play"]:
         assert 0.05 < row["bend_play_deg"] < 5.0
         assert 0.5 < row["twist_play_deg"] < 40.0
+
+
+def test_wrist_trace_reports_the_math_and_draws_it(tmp_path, capsys):
+    import json
+
+    from partgen.cli.main import main
+    code = main(["trace", str(ROOT / "configs" / "wrist_quasi_ellipsoid.yaml"), "--json", "--plots", str(tmp_path)])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["kind"] == "wrist"
+    assert out["ode_vs_closed_form_max"] < 1e-9 and out["mating_angle_methods_max_rad"] < 1e-9
+    assert out["valid_end_deg"] == pytest.approx(math.degrees(2 * math.atan(1 / 0.6667)), abs=1e-6)
+    assert [r["teeth"] for r in out["rows"]] == [1, 6, 12]
+    assert all(abs(r["lat_pitch_off"]) > 1e-4 for r in out["rows"][1:])
+    from PIL import Image
+    assert Image.open(tmp_path / "wrist.png").size[0] > 1000

@@ -29,6 +29,20 @@ def run(args) -> int:
         return 2
     loaded, theta, pen, stats, folder = pipeline.trace_design(args.config, args.samples,
                                                               False if args.no_plots else args.plots)
+    if stats.get("kind") == "wrist":
+        if args.json:
+            print(json.dumps({"design": loaded.params.name, **stats, "plots_dir": str(folder) if folder else None}, indent=1))
+            return 0
+        print(f"{loaded.params.name}: I = {stats['nominal_ratio']:g}; valid range θ ≤ {stats['valid_end_deg']:.3f}° "
+              f"(φ reaches 90°); workspace θ ≤ {stats['workspace_theta_max_deg']:.3f}°")
+        print(f"  ODE vs closed form: {stats['ode_vs_closed_form_max']:.1e}; mating angle, meridian vs latitude: "
+              f"{stats['mating_angle_methods_max_rad']:.1e} rad")
+        for r in stats["rows"][1:]:
+            print(f"  ring {r['k']}: {r['teeth']} teeth at θ = {r['theta_deg']:.3f}°, φ = {r['phi_deg']:.3f}°, latitudinal "
+                  f"pitch {r['lat_pitch_mm']:.3f} mm ({100 * r['lat_pitch_off']:+.2f} % off the longitudinal)")
+        if folder:
+            print(f"plots: {folder}/wrist.png, wrist.svg")
+        return 0
     if args.csv:
         rows = np.column_stack([theta, pen.real, pen.imag])
         with open(args.csv, "w", encoding="utf-8") as f:
