@@ -32,7 +32,8 @@ def built(request, tmp_path_factory):
 def test_wrist_kits_build_watertight_and_fit(tmp_path):
     for name in CONFIGS:
         loaded, kit, man, folder = pipeline.build(ROOT / "configs" / f"{name}.yaml", tmp_path / name)
-        assert [p["name"] for p in man["parts"]] == ["gear1", "gear2"]
+        expected = ["gear1", "gear2"] + (["cross_gear"] if name == "wrist_sphere" else [])
+        assert [p["name"] for p in man["parts"]] == expected
         for p in man["parts"]:
             mesh = trimesh.load(folder / p["file"], file_type="stl", force="mesh")
             assert mesh_problems(mesh, kit.params.printer.envelope) == []
@@ -140,3 +141,49 @@ def test_wrist_trace_reports_the_math_and_draws_it(tmp_path, capsys):
     assert all(abs(r["lat_pitch_off"]) > 1e-4 for r in out["rows"][1:])
     from PIL import Image
     assert Image.open(tmp_path / "wrist.png").size[0] > 1000
+
+
+def test_cross_gear_keeps_its_profile_through_both_ring_axes(tmp_path):
+    """The ABENICS-style cross gear of wrist_sphere: section the printed mesh just above its
+    equatorial base (the plane through both ring axes) and compare with the 2-D involute profile."""
+    import shapely
+    from shapely.geometry import Polygon
+
+    from partgen.geometry.gear import gear_outline
+    from partgen.testing import section_outline
+    _, kit, man, folder = pipeline.build(ROOT / "configs" / "wrist_sphere.yaml", tmp_path / "k")
+    entry = next(p for p in man["parts"] if p["name"] == "cross_gear")
+    mesh = trimesh.load(folder / entry["file"], file_type="stl", force="mesh")
+    assert mesh_problems(mesh) == []
+    spec = next(p for p in kit.parts if p.name == "cross_gear").gear
+    sec = section_outline(mesh, 0.02)
+    prof = Polygon(gear_outline(spec).points)
+    assert shapely.symmetric_difference(Polygon(sec.exterior), prof).area < 0.02 * prof.length  # a ~0.02 mm band
+
+
+def test_cross_gear_tooth_count_rule():
+    import math as _m
+
+    from partgen.design.gearing import ToothSystem, make_gear
+    from partgen.geometry.cross_gear import cross_gear, equatorial_error, ring_gear
+    good = make_gear(24, ToothSystem(module=2.5, pressure_angle=_m.radians(20), profile_shift=0.0, chord_tolerance=0.02))
+    assert equatorial_error(cross_gear(good), good) < 0.05
+    bad = make_gear(22, ToothSystem(module=2.5, pressure_angle=_m.radians(20), profile_shift=0.0, chord_tolerance=0.02))
+    with pytest.raises(ValueError, match="multiple of 4"):
+        cross_gear(bad)
+    forced = ring_gear(bad, 88)
+    assert equatorial_error(forced ^ forced.rotate((0.0, 0.0, 90.0)), bad) > 50.0  # the rule is real
+
+
+def test_cross_gear_bad_teeth_is_a_config_error(tmp_path, capsys):
+    import yaml
+
+    from partgen.cli.main import main
+    d = yaml.safe_load((ROOT / "configs" / "wrist_sphere.yaml").read_text())
+    d["printer"] = str(ROOT / "configs" / "printers" / "fortus450mc.yaml")
+    d["wrist"]["cross_gear"]["teeth"] = 22
+    cfg = tmp_path / "bad.yaml"
+    cfg.write_text(yaml.safe_dump(d))
+    assert main(["build", str(cfg), "-o", str(tmp_path / "out")]) == 2
+    assert "wrist.cross_gear.teeth" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()

@@ -13,7 +13,7 @@ from ..design.spherical import WristSpec
 from ..geometry import wrist as W
 
 from ..geometry.parts import DFit, Part
-from ..geometry.solid import extrude
+from ..geometry.solid import SLIVER, extrude
 
 __all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max"]
 
@@ -42,7 +42,11 @@ class WristKit:
 
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         """Poses at rest (θ = 0: straight) — the assembly the manifest places."""
-        return {"gear1": np.eye(4), "gear2": self.pose2(0.0, 0.0)}
+        out = {"gear1": np.eye(4), "gear2": self.pose2(0.0, 0.0)}
+        shown_beside = np.eye(4)  # the cross gear is the other tooth form, not part of this pair
+        shown_beside[0, 3] = -1.5 * self.spec.A
+        out["cross_gear"] = shown_beside
+        return out
 
 
 def workspace_theta_max(I: float, max_bend: float) -> float:
@@ -86,6 +90,13 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
     cap2 = W.revolved_cap(r_of2, alpha2, -spec.base_height, fit.radius + 3.0, spec.tol)
     gear2 = (cap2 - sweep) - bore
     parts.append(Part("gear2", "wrist_gear", gear2))
+    if spec.cross is not None:  # the second tooth form: an ABENICS cross gear on the same sphere
+        say("cross gear")
+        from ..geometry.cross_gear import cross_gear
+        r = spec.cross.tip_radius * 1.05
+        half = extrude(box_xy(r), r + 1.0, 0.0)  # cut flat at the equator: it prints on that face
+        solid = ((cross_gear(spec.cross) ^ half) - bore.translate((0, 0, spec.base_height))).simplify(SLIVER)
+        parts.append(Part("cross_gear", "wrist_gear", solid, gear=spec.cross))
     figures = {"rows": [{"k": r.k, "teeth": r.teeth, "theta_deg": round(math.degrees(r.theta), 4),
                          "phi_deg": round(math.degrees(r.phi), 4), "lat_pitch_mm": round(r.lat_pitch_1, 4),
                          "lat_pitch_vs_long": round(r.lat_pitch_1 / spec.long_pitch - 1, 5) if r.k else None}
@@ -102,3 +113,8 @@ def _union(solids):
     return m3d.Manifold.batch_boolean(list(solids), m3d.OpType.Add)
 
 
+
+
+def box_xy(r: float):
+    from shapely.geometry import box
+    return box(-r, -r, r, r)

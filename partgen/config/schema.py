@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
 __all__ = ["Printer", "Design", "WristDesign"]
 
@@ -241,6 +241,22 @@ class Sweep(Strict):
     psi_steps: Annotated[int, Field(ge=4, le=720)] = 24
 
 
+class CrossGear(Strict):
+    """An ABENICS-style cross spherical gear (ring-involute teeth both ways) on a spherical pitch."""
+
+    teeth: Annotated[int, Field(ge=8, le=400)]
+    module_mm: Pos
+    pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
+    backlash_per_gear_mm: NonNeg = 0.05
+
+    @field_validator("teeth")
+    @classmethod
+    def _multiple_of_4(cls, v):
+        if v % 4:
+            raise ValueError("must be a multiple of 4 so the section through both ring axes is the 2-D profile")
+        return v
+
+
 class Wrist(Strict):
     """A spherical (nominal_ratio 1) or quasi-ellipsoidal wrist gear pair."""
 
@@ -256,6 +272,7 @@ class Wrist(Strict):
     press_fit_clearance_diametral_mm: float = 0.05
     base_height_mm: Pos = 8.0
     chord_tolerance_mm: Annotated[float, Field(ge=1e-3, le=0.5)] = 0.02
+    cross_gear: CrossGear | None = None
 
 
 class WristDesign(Strict):

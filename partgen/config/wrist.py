@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import math
 
+from ..design.gearing import ToothSystem, make_gear
 from ..design.mechanism import PrinterLimits
+from ..errors import ConfigError
 from ..design.spherical import WristSpec
 from .loader import LoadedDesign
 
@@ -13,6 +15,18 @@ __all__ = ["resolve_wrist"]
 
 def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
     d, w, p = loaded.design, loaded.design.wrist, loaded.printer
+    cross = None
+    if w.cross_gear is not None:
+        c = w.cross_gear
+        if w.nominal_ratio != 1.0:
+            raise ConfigError(loaded.path, "wrist.cross_gear", "a cross gear needs a spherical pitch (nominal_ratio 1)")
+        if abs(c.module_mm * c.teeth / 2 - w.centre_distance_mm / 2) > 1e-9:
+            raise ConfigError(loaded.path, "wrist.cross_gear.module_mm",
+                              f"pitch radius m·z/2 = {c.module_mm * c.teeth / 2:g} mm must be the sphere's "
+                              f"{w.centre_distance_mm / 2:g} mm (half the centre distance)")
+        cross = make_gear(c.teeth, ToothSystem(module=c.module_mm, pressure_angle=math.radians(c.pressure_angle_deg),
+                                               profile_shift=0.0, backlash_per_gear=c.backlash_per_gear_mm,
+                                               chord_tolerance=max(w.chord_tolerance_mm, 0.01)))
     return WristSpec(
         name=d.name, I=w.nominal_ratio, A=w.centre_distance_mm, long_pitch=w.longitudinal_pitch_mm,
         ring_teeth=tuple(w.ring_teeth), dome_radius=w.tooth.radius_mm, tooth_height=w.tooth.height_mm,
@@ -21,4 +35,4 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
         press_clearance=w.press_fit_clearance_diametral_mm, base_height=w.base_height_mm, tol=w.chord_tolerance_mm,
         density=d.material.density_g_cm3 / 1000.0, material=d.material.name,
         printer=PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
-                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm))
+                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm), cross=cross)

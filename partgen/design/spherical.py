@@ -231,3 +231,4 @@ class WristSpec:
     density: float
     material: str
     printer: object  # PrinterLimits
+    cross: object = None  # GearSpec of an ABENICS-style cross gear on the spherical pitch, or None
