@@ -251,6 +251,9 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
     from .export.render import render
 
     say = progress or (lambda step: None)
+    raw = load_design(path)
+    if raw.design.__class__.__name__ == "WristDesign":
+        return report_wrist(raw, dest, say)
     say("check")
     loaded, kit, result, _ = check(path, samples, write_plates=False)
     mech, params = loaded.mechanism, loaded.params
@@ -421,3 +424,61 @@ def trace_wrist(raw, plots_dir=None):
     from .assembly.wrist import WristParams
     loaded = Loaded(raw.path, None, WristParams(spec.name, spec.density, spec.material, spec.printer), raw.printer_path)
     return loaded, t, None, stats, folder
+
+def report_wrist(raw, dest=None, say=lambda step: None) -> Path:
+    """The report page of a wrist pair: its math (like the paper's figures), pictures of the gears
+    and of the pair bent, the check over the workspace with the play."""
+    import math
+    import tempfile
+
+    from .assembly.wrist import build_wrist
+    from .checks.wrist import check_wrist
+    from .config.wrist import resolve_wrist
+    from .design import spherical as sph
+    from .export import report as R
+    from .export.kit import atomic_dir
+    from .export.render import render
+    from .geometry.solid import mesh_arrays
+
+    spec = resolve_wrist(raw)
+    say("build")
+    kit = build_wrist(spec)
+    say("check")
+    result = check_wrist(kit)
+    with tempfile.TemporaryDirectory() as tmpdir:
+        say("trace")
+        _, _, _, stats, folder = trace_wrist(raw, Path(tmpdir) / "trace")
+        math_png = (folder / "wrist.png").read_bytes()
+    say("pictures")
+    colours = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b"}
+    meshes = {p.name: mesh_arrays(p.solid) for p in kit.parts}
+    pics = [f"<figure>{R.img(render([(v, f, colours[n])], (320, 300), elev=35, azim=-55), n)}<figcaption>{n}"
+            f"</figcaption></figure>" for n, (v, f) in meshes.items()]
+    T = kit.pose2(kit.theta_max * 0.8, 0.6)
+    v2, f2 = meshes["gear2"]
+    bent = render([(*meshes["gear1"], colours["gear1"]), (v2 @ T[:3, :3].T + T[:3, 3], f2, colours["gear2"])], (520, 520),
+                  elev=12, azim=-30)
+    pics.append(f"<figure>{R.img(bent, 'bent')}<figcaption>the pair bent by "
+                f"{math.degrees(0.8 * kit.theta_max + float(sph.mating_angle(0.8 * kit.theta_max, spec.I))):.0f}°"
+                "</figcaption></figure>")
+    rows = [[r["k"], r["teeth"], r["theta_deg"], r["phi_deg"], r["lat_pitch_mm"],
+             "–" if r["lat_pitch_off"] is None else f"{100 * r['lat_pitch_off']:+.2f} %"] for r in stats["rows"]]
+    design = (R.table(["ring", "teeth", "θ on gear 1 °", "φ on gear 2 °", "latitudinal pitch mm", "vs longitudinal"], rows)
+              + f"<p>Nominal ratio I = {spec.I:g}, centre distance {spec.A:g} mm, longitudinal pitch {spec.long_pitch:g} mm, "
+              f"dome teeth r = {spec.dome_radius:g} mm standing {spec.tooth_height:g} mm proud, sockets cut with "
+              f"{spec.clearance:g} mm clearance over bends ≤ {math.degrees(spec.max_bend):g}°. The ratio ODE agrees with its "
+              f"closed form tan(φ/2) = I tan(θ/2) to {stats['ode_vs_closed_form_max']:.1e}; its valid range ends at "
+              f"θ = {stats['valid_end_deg']:.2f}°.</p>")
+    f = result.figures
+    play = [[p["theta_deg"], p["twist_play_deg"], p["bend_play_deg"]] for p in f["play"]]
+    check_html = (f'<p class="{"ok" if result.ok else "fail"}">{f["poses"]} poses: largest overlap {f["max_overlap_mm3"]:.4f} mm³, '
+                  f"least engaged tooth volume {f['min_engaged_mm3']:.2f} mm³.</p>"
+                  + R.table(["θ on gear 1 °", "twist play °", "bend play °"], play)
+                  + "<p>Twist play is large: domes resist a twist about the line of centres only through the teeth "
+                  "beside the contact, and near the pole the contact tooth sits on that axis.</p>")
+    sections = [("Design", design), ("Math", R.img(math_png, "ratio, mating angle, meridians")),
+                ("Parts", f'<div class="grid">{"".join(pics)}</div>'), ("Check", check_html)]
+    out = Path(dest) if dest else Path("out") / spec.name / "report"
+    with atomic_dir(out) as tmp:
+        (tmp / "index.html").write_text(R.page(f"partgen report: {spec.name}", sections, raw.path.name), encoding="utf-8")
+    return out

@@ -187,3 +187,16 @@ def test_cross_gear_bad_teeth_is_a_config_error(tmp_path, capsys):
     assert main(["build", str(cfg), "-o", str(tmp_path / "out")]) == 2
     assert "wrist.cross_gear.teeth" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def test_wrist_report_page(tmp_path):
+    import re
+
+    from partgen.cli.main import main
+    assert main(["report", str(ROOT / "configs" / "wrist_quasi_ellipsoid.yaml"), "-o", str(tmp_path)]) == 0
+    text = (tmp_path / "index.html").read_text()
+    for heading in ("Design", "Math", "Parts", "Check"):
+        assert f">{heading}</h2>" in text
+    imgs = re.findall(r'<img src="data:image/png;base64,', text)
+    assert len(imgs) >= 4  # the math figure, both gears, the bent pair
+    assert "twist play" in text and not re.search(r"""src=["'](https?:|file:)""", text)
