@@ -195,16 +195,21 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
                 st = replace(st, idler=(float(placed[0]), float(placed[1])))
             stages.append(st)
             findings += verify_stage(st, limits, f"teeth[{j - 1}]")
-    G1, drive = make_gear(params.drive_teeth, system), make_gear(params.drive_teeth, system)
+    G1, drive, drive_centre = _drive(params)
     distinct = {(g.teeth, g.profile_shift): g for s in stages for g in (s.D, s.M, s.G)}
-    distinct[(G1.teeth, G1.profile_shift)] = G1
     for g in distinct.values():
         check_generable(g)
-    a = centre_distance(G1, drive)
-    drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
                      inputs.chain)
+
+
+def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
+    """G1 and the drive gear (same teeth: one crank turn per cycle) and where the drive sits."""
+    G1 = make_gear(params.drive_teeth, params.system)
+    check_generable(G1)
+    a = centre_distance(G1, G1)
+    return G1, G1, (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
 
 
 def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings) -> Mechanism:
@@ -230,11 +235,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
             links[j - 1] = _replace(link, length=st.length)
             findings.append(Finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
                                     f"{st.link_change:+.3f} mm so a {st.belt_teeth}-tooth belt fits", "belts"))
-    system = params.system
-    G1, drive = make_gear(params.drive_teeth, system), make_gear(params.drive_teeth, system)
-    check_generable(G1)
-    a = centre_distance(G1, drive)
-    drive_centre = (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
+    G1, drive, drive_centre = _drive(params)
     chain = Chain(tuple(links), inputs.chain.offset)
     return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
                      True, inputs.source, tuple(stages), inputs.chain)
