@@ -1,9 +1,10 @@
 """Checks of a wrist gear pair over its 2-DoF workspace: no interference, teeth always engaged,
 and the play in bending and in twist.
 
-Play: from the pose (θ, ψ), gear 2 is turned — about the line of centres (twist) or about the
-axis through its centre normal to the bending plane (bend, without rolling) — until it overlaps
-gear 1 by the tolerance; the two directions add up to the play.
+Play: from the pose (θ, ψ), gear 2 is turned — about its own axis (twist: the hand turning on
+the forearm) or about the axis through its centre normal to the bending plane (bend, without
+rolling) — until it overlaps gear 1 by the tolerance; the two directions add up to the play. Near
+the pole the contact lies on gear 2's axis and nothing resists a twist: the play is large there.
 """
 
 from __future__ import annotations
@@ -85,8 +86,7 @@ def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: in
     for theta in np.linspace(0, kit.theta_max, play_thetas):
         T = kit.pose2(float(theta), 0.0)
         c2 = T[:3, 3]
-        u = c2 / np.linalg.norm(c2)
-        twist = _play(g1, g2, T, u, np.zeros(3), tol)
+        twist = _play(g1, g2, T, T[:3, 2], c2, tol)  # about gear 2's own axis: the hand's twist
         bend = _play(g1, g2, T, np.array([0.0, 1.0, 0.0]), c2, tol)
         rows.append({"theta_deg": round(math.degrees(theta), 3), "twist_play_deg": round(math.degrees(twist), 3),
                      "bend_play_deg": round(math.degrees(bend), 3)})
