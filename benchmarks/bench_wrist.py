@@ -105,6 +105,15 @@ def child_main(job: dict) -> None:
             res["as_limit_mb"] = base + job["cap_mb"]
 
     spec = resolve_wrist(load_design(str(ROOT / job["config"])))
+    if job["mode"] == "cross":  # the second tooth form alone
+        from partgen.geometry.cross_gear import cross_gear
+        t0 = time.perf_counter()
+        g = cross_gear(spec.cross)
+        res.update(t_total=time.perf_counter() - t0, tri=g.num_tri(), teeth=spec.cross.teeth)
+        res["t_total"] = time.perf_counter() - t0
+        write("ok")
+        return
+    spec = dataclasses.replace(spec, cross=None)  # the dome pair only: the cross gear is measured alone
     if job.get("theta") is not None:
         spec = dataclasses.replace(spec, theta_steps=job["theta"], psi_steps=job["psi"])
     res["res"] = [spec.theta_steps, spec.psi_steps]
@@ -261,6 +270,8 @@ def main(argv=None) -> int:
             if not ok(defaults[cfg]):
                 sys.exit(f"bench_wrist: {cfg} failed: {defaults[cfg]['status']}")
         default_res = tuple(defaults[GROWTH_CONFIG]["res"])
+        say("1b. the cross gear of wrist_sphere alone")
+        cross = run.run({"mode": "cross", "config": "configs/wrist_sphere.yaml"})
 
         ours_at: dict = {default_res: defaults[GROWTH_CONFIG]}
         for th, ps in growth:
@@ -316,6 +327,12 @@ def main(argv=None) -> int:
                  f"memory {'met' if met_m else 'MISSED'}")
     o.append("  gear2 = sweep() call (spheres + hulls + lazy union tree) + evaluation of cap - sweep - bore (num_tri).")
     o.append(f"  target: {'MET' if all_met else 'NOT MET'} for both pairs (in-child time and peak RSS).")
+    if ok(cross):
+        met = cross["t_total"] < 20 and cross["rss_mb"] < 1024
+        o.append(f"  cross gear (wrist_sphere, {cross['teeth']} teeth): {cross['t_total']:.2f} s, peak RSS "
+                 f"{cross['rss_mb']:.0f} MB, {cross['tri']} triangles — target {'MET' if met else 'NOT MET'}")
+    else:
+        o.append(f"  cross gear: {cross['status']}")
     o.append("")
 
     o.append("4. the clip at the default resolution (pieces kept / dome x pose pieces total)")
