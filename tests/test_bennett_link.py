@@ -1,0 +1,42 @@
+"""A printable Bennett link: its two bores lie on skew axes a apart and twisted by α."""
+
+import math
+
+import manifold3d as m3d
+import numpy as np
+import pytest
+
+from partgen.export.kit import printed
+from partgen.geometry.bennett_link import _place, distal_axis, skew_link
+from partgen.geometry.measure import intersection
+from partgen.geometry.parts import Part
+from partgen.testing import mesh_problems
+
+A, ALPHA = 50.0, math.radians(30)
+
+
+def pin(point, direction, radius, length=40.0):
+    return _place(m3d.Manifold.cylinder(length, radius, -1.0, 48, True), np.asarray(point, float),
+                  np.asarray(direction, float), 0.0)
+
+
+def test_link_is_a_printable_solid_with_two_bores():
+    link = skew_link(A, ALPHA, 6.0, 8.0, 2.55, 3.0, (4.25, -4.25))
+    assert link.genus() == 2
+    assert mesh_problems(printed(Part("L", "link", link)).mesh) == []
+
+
+@pytest.mark.parametrize("alpha_deg", [30.0, 55.7, 80.0])
+def test_bores_lie_on_the_skew_axes(alpha_deg):
+    alpha = math.radians(alpha_deg)
+    link = skew_link(A, alpha, 6.0, 8.0, 2.55, 3.0, (4.25, -4.25))
+    p1, d1 = distal_axis(A, alpha)
+    eye = np.eye(4)
+    # a pin a hair thinner than the bore passes along each true joint axis...
+    for point, direction in (((0, 0, 0), (0, 0, 1)), (p1, d1)):
+        assert intersection(link, eye, pin(point, direction, 2.5), eye)[0] < 1e-6
+    # ...and jams along the untwisted axis (the check can fail)
+    assert intersection(link, eye, pin(p1, (0, 0, 1), 2.5), eye)[0] > 1.0
+    # the two axes: common normal a long, at angle α
+    assert abs(np.cross((0, 0, 1), d1) @ (p1 - 0)) / np.linalg.norm(np.cross((0, 0, 1), d1)) == pytest.approx(A)
+    assert math.acos(d1 @ (0, 0, 1)) == pytest.approx(alpha)
