@@ -6,6 +6,7 @@ CLI turns those into exit code 2.
 
 from __future__ import annotations
 
+import html
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -302,7 +303,7 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
                           "tensioner (link frame) mm", "link change mm"], belts, left=1) if belts else "")
               + f"<p>Module {params.system.module:g} mm, pressure angle {math.degrees(params.system.pressure_angle):g}°, "
               f"backlash {params.system.backlash_per_gear:g} mm per gear, face width {params.face_width:g} mm, "
-              f"printer {html_escape(params.printer.name)}, material {html_escape(params.material)}.</p>")
+              f"printer {html.escape(params.printer.name)}, material {html.escape(params.material)}.</p>")
     rows = []
     density = params.density
     for g in groups:
@@ -326,7 +327,7 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
                   + f'<div class="grid"><figure>{R.img(trace_png, "trace", width=640)}</figure>'
                   f'<figure>{R.img(trace_gif, "animation", "image/gif", width=440)}<figcaption>One crank turn.'
                   "</figcaption></figure></div>")
-    fails = [[f.check, f'<span class="{f.severity}">{f.severity}</span>', html_escape(f.message),
+    fails = [[f.check, f'<span class="{f.severity}">{f.severity}</span>', html.escape(f.message),
               "" if f.theta is None else f"{math.degrees(f.theta):.1f}"] for f in result.findings]
     fig = result.figures
     close = fig["motion"].get("closest_approach")
@@ -350,10 +351,6 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
                                         encoding="utf-8")
     return out
 
-
-def html_escape(s: str) -> str:
-    import html
-    return html.escape(str(s))
 
 
 def build_wrist_kit(raw, dest=None, progress=None):

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from shapely.geometry import box
 
 from ..design import spherical as sph
 from ..design.spherical import WristSpec
@@ -79,7 +80,7 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
     domes = W.dome_teeth([(r.theta, r.teeth) for r in pair.rows], r_of1, spec.dome_radius, spec.tooth_height)
     segs = max(24, int(round(2 * math.pi * spec.dome_radius / 0.5)))
     bore = extrude(fit.hole(0.01), spec.base_height + A / 4, -spec.base_height - 1.0)
-    gear1 = (cap1 + _union(W.dome_solid(domes, 0.0, segs))) - bore
+    gear1 = (cap1 + W.domes_union(domes, 0.0, segs)) - bore
     parts.append(Part("gear1", "wrist_gear", gear1))
     say("gear2 sockets")
     thetas = np.linspace(0.0, theta_max, spec.theta_steps)
@@ -94,7 +95,7 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
         say("cross gear")
         from ..geometry.cross_gear import cross_gear
         r = spec.cross.tip_radius * 1.05
-        half = extrude(box_xy(r), r + 1.0, 0.0)  # cut flat at the equator: it prints on that face
+        half = extrude(box(-r, -r, r, r), r + 1.0, 0.0)  # cut flat at the equator: it prints on that face
         solid = ((cross_gear(spec.cross) ^ half) - bore.translate((0, 0, spec.base_height))).simplify(SLIVER)
         parts.append(Part("cross_gear", "wrist_gear", solid, gear=spec.cross))
     figures = {"rows": [{"k": r.k, "teeth": r.teeth, "theta_deg": round(math.degrees(r.theta), 4),
@@ -106,15 +107,3 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
                "sweep_pieces": pieces, "sweep_poses": int(poses.shape[0] * poses.shape[1])}
     return WristKit(spec, pair, tuple(parts), tuple(domes), theta_max,
                     WristParams(spec.name, spec.density, spec.material, spec.printer), figures)
-
-
-def _union(solids):
-    import manifold3d as m3d
-    return m3d.Manifold.batch_boolean(list(solids), m3d.OpType.Add)
-
-
-
-
-def box_xy(r: float):
-    from shapely.geometry import box
-    return box(-r, -r, r, r)
