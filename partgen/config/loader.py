@@ -12,7 +12,7 @@ import yaml
 from pydantic import BaseModel, ValidationError
 
 from ..errors import ConfigError
-from .schema import Design, Printer, WristDesign
+from .schema import BennettDesign, Design, Printer, WristDesign
 
 __all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path"]
 
@@ -22,7 +22,7 @@ M = TypeVar("M", bound=BaseModel)
 @dataclass(frozen=True)
 class LoadedDesign:
     path: Path
-    design: Design | WristDesign
+    design: Design | WristDesign | BennettDesign
     printer_path: Path
     printer: Printer
 
@@ -112,7 +112,8 @@ def load_design(path: str | Path) -> LoadedDesign:
     """Design and printer profile of a design file; the printer path is relative to the design."""
     path = Path(path)
     data = read_yaml(path)
-    design = validate(WristDesign if data.get("kind") == "wrist" else Design, data, path)
+    kinds = {"wrist": WristDesign, "bennett_butterfly": BennettDesign}
+    design = validate(kinds.get(data.get("kind"), Design), data, path)
     printer_path = (path.parent / design.printer).resolve()
     if not printer_path.is_file():
         raise ConfigError(path, "printer", f"no printer profile at {design.printer!r} (looked for {printer_path})")

@@ -10,7 +10,7 @@ from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
 
-__all__ = ["Printer", "Design", "WristDesign"]
+__all__ = ["Printer", "Design", "WristDesign", "BennettDesign"]
 
 Pos = Annotated[float, Field(gt=0)]
 NonNeg = Annotated[float, Field(ge=0)]
@@ -281,4 +281,95 @@ class WristDesign(Strict):
     description: str = ""
     printer: str
     wrist: Wrist
+    material: Material
+
+
+class BennettLinkage(Strict):
+    """Bennett 1 (S-B2-D2-B3) and the scales of the four similar Bennetts (van der Wijk 2020)."""
+
+    a_mm: Pos = Field(description="S–B2 and D2–B3")
+    b_mm: Pos = Field(description="B2–D2 and B3–S")
+    alpha_deg: Annotated[float, Field(gt=0, lt=180)]
+    beta_deg: Annotated[float, Field(gt=0, lt=180)] | None = None
+    scales: Annotated[list[Pos], Field(min_length=4, max_length=4)] = [1.0, 0.8, 0.6, 0.7]
+    home_angle_deg: Annotated[float, Field(gt=0, lt=180)] = 77.0
+    workspace_deg: Annotated[list[Annotated[float, Field(gt=0, lt=180)]], Field(min_length=2, max_length=2)]
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        lo, hi = self.workspace_deg
+        if not lo < hi:
+            raise ValueError("workspace_deg must be [low, high] with low < high")
+        if not lo <= self.home_angle_deg <= hi:
+            raise ValueError("home_angle_deg must lie inside workspace_deg")
+        return self
+
+
+class BennettLayout(Strict):
+    """A fixed stack layout (what `partgen build` prints after an automatic one)."""
+
+    layers: dict[Annotated[int, Field(ge=1, le=12)], Annotated[int, Field(ge=1, le=20)]]
+    shifts_mm: dict[str, float] = {}
+
+
+class BennettParts(Strict):
+    bar_diameter_mm: Pos
+    boss_diameter_mm: Pos
+    boss_length_mm: Pos
+    axial_gap_mm: Pos
+    layout: Literal["auto"] | BennettLayout = "auto"
+    layers: Annotated[int, Field(ge=3, le=12)] = 6
+    offset_step_mm: Pos = 5.0
+    offset_max_mm: NonNeg = 40.0
+    segments: Annotated[int, Field(ge=12, le=256)] = 40
+
+
+class Pin(Strict):
+    kind: str = "steel dowel pin"
+    diameter_mm: Pos
+    clearance_diametral_mm: NonNeg
+    density_g_cm3: Pos = 7.85
+
+
+class Counterweights(Strict):
+    """Pockets on three links, filled with ``fill`` to the mass the balance conditions ask."""
+
+    links: Annotated[list[Annotated[int, Field(ge=1, le=12)]], Field(min_length=3, max_length=3)]
+    distance_mm: Annotated[list[float], Field(min_length=3, max_length=3)]
+    outer_diameter_mm: Pos
+    height_mm: Pos
+    wall_mm: Pos
+    fill: Material
+
+
+class PrintCfg(Strict):
+    wall_mm: Pos = 1.2
+    skin_mm: Pos = 1.0
+    infill_percent: Annotated[float, Field(ge=0, le=100)] = 20.0
+
+
+class BennettBase(Strict):
+    height_mm: Pos = 80.0
+
+
+class BennettChecks(Strict):
+    balance_tolerance_mm: Pos = 0.5
+    grid: Annotated[list[Annotated[int, Field(ge=2, le=400)]], Field(min_length=2, max_length=2)] = [24, 25]
+    infill_error_percent_points: NonNeg = 5.0
+    mass_scale: dict[Annotated[int, Field(ge=1, le=12)], Pos] = Field(
+        default={}, description="what-if: a link's mass times this, counterweights not re-sized (seeded faults)")
+
+
+class BennettDesign(Strict):
+    kind: Literal["bennett_butterfly"]
+    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
+    description: str = ""
+    printer: str
+    linkage: BennettLinkage
+    parts: BennettParts
+    pin: Pin
+    counterweights: Counterweights
+    print: PrintCfg = PrintCfg()
+    base: BennettBase = BennettBase()
+    checks: BennettChecks = BennettChecks()
     material: Material

@@ -33,8 +33,8 @@ from ..errors import DesignError
 from .balanced import Butterfly
 from .bennett import check_bennett, joint_angles
 
-__all__ = ["BennettButterfly", "JOINTS", "GROUP", "REFERENCE", "Pose", "pose", "link_frames", "body_joints",
-           "centre_of_mass", "solve_point_masses", "shape_angle"]
+__all__ = ["BennettButterfly", "BennettParams", "JOINTS", "GROUP", "REFERENCE", "Pose", "pose", "link_frames", "body_joints",
+           "centre_of_mass", "solve_point_masses", "solve_counterweights", "shape_angle"]
 
 # joint: (links it connects, the Bennett-1 joint its axis is parallel to, the point it sits at)
 JOINTS: dict[str, tuple[tuple[int, int], str, str]] = {
@@ -199,3 +199,78 @@ def solve_point_masses(p: Pose, masses: dict[int, float], body_coms: dict[int, n
         raise DesignError("the balance needs a negative counter-mass (" + ", ".join(bad)
                           + "): put the counterweights on the other side of their joints")
     return x, float(np.linalg.norm(resid, axis=1).max() / total)
+
+
+def solve_counterweights(p: Pose, masses: dict[int, float], body_coms: dict[int, np.ndarray],
+                         at: list[tuple[int, np.ndarray]], mass_weight: float = 100.0
+                         ) -> tuple[np.ndarray, np.ndarray, float]:
+    """Point masses on links ``at`` [(link, nominal body point (3,))], each free to move off its
+    nominal point by δ (3,), that put the common centre of mass at S over the poses.
+
+    The moment is linear in each mass m and in h = m·δ, so this is a linear problem; the balance
+    has fewer independent conditions than unknowns, and of all exact solutions the one with the
+    smallest Σ|h|² + Σ(m/mass_weight)²... is taken by a weighted minimum-norm least squares (m
+    weighted ``mass_weight`` mm, so masses are cheap and offsets dear). Returns masses (k,) g,
+    offsets δ (k, 3) mm in the body frames, and the worst remaining moment per unit mass (mm)."""
+    frames = link_frames(p)
+    rhs = np.zeros((len(p.q1), 3))
+    for i, m in masses.items():
+        T = frames[i]
+        rhs -= m * (T[:, :3, :3] @ np.asarray(body_coms[i], float) + T[:, :3, 3])
+    cols = []
+    for i, p0 in at:
+        R, t = frames[i][:, :3, :3], frames[i][:, :3, 3]
+        cols.append(mass_weight * (R @ np.asarray(p0, float) + t).ravel())
+        cols += [R[:, :, k].ravel() for k in range(3)]
+    A = np.column_stack(cols)
+    y, *_ = np.linalg.lstsq(A, rhs.ravel(), rcond=None)
+    resid = (A @ y - rhs.ravel()).reshape(-1, 3)
+    y = y.reshape(-1, 4)
+    m = mass_weight * y[:, 0]
+    if np.any(m <= 0):
+        bad = [f"link {i}: {v:.3g} g" for (i, _), v in zip(at, m) if v <= 0]
+        raise DesignError("the balance needs a negative counter-mass (" + ", ".join(bad)
+                          + "): move the counterweights to the other side of their joints or to other links")
+    delta = y[:, 1:] / m[:, None]
+    total = sum(masses.values()) + float(m.sum())
+    return m, delta, float(np.linalg.norm(resid, axis=1).max() / total)
+
+
+@dataclass(frozen=True)
+class BennettParams:
+    """Everything the kit needs (mm, rad, g/mm³); the assembly layer builds it."""
+
+    name: str
+    bb: bbf.BennettButterfly
+    home: float  # angle between links 1 and 4 at S (rad)
+    workspace: tuple[float, float]  # range of that angle the kit must move through freely (rad)
+    boss_radius: float
+    boss_length: float
+    axial_gap: float
+    bar_radius: float
+    pin_radius: float
+    pin_clearance: float  # diametral
+    pin_density: float
+    offset_step: float
+    offset_max: float
+    cw_links: tuple[int, ...]
+    cw_distance: tuple[float, ...]
+    cw_outer_radius: float
+    cw_height: float
+    cw_wall: float
+    fill_name: str
+    fill_density: float
+    density: float
+    material: str
+    print_wall: float
+    print_skin: float
+    infill: float  # fraction 0..1
+    base_height: float
+    tolerance: float  # balance tolerance, mm
+    grid: tuple[int, int]  # balance grid: q1 samples × shape samples
+    infill_error: float  # fraction points, e.g. 0.05
+    layers: int = 6
+    fixed_layout: tuple | None = None  # (layers {link: layer}, shifts {joint: mm}) or None: automatic
+    mass_scale: tuple = ()  # ((link, factor), ...): what-if heavier links, counterweights not re-sized
+    printer: object = None
+    segments: int = 40

@@ -10,11 +10,12 @@ these offsets.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import manifold3d as m3d
 import numpy as np
 
-__all__ = ["skew_link", "distal_axis"]
+__all__ = ["skew_link", "distal_axis", "Boss", "Bar", "Cup", "link_solid", "link_interior", "capsules", "cylinder_capsules"]
 
 
 def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
@@ -59,3 +60,134 @@ def skew_link(a: float, alpha: float, boss_r: float, boss_len: float, bore_r: fl
                     offsets[0]),
              _place(m3d.Manifold.cylinder(long, bore_r, -1.0, segments, True), p1, d1, offsets[1])]
     return m3d.Manifold.batch_boolean([b0, b1, bar], m3d.OpType.Add) - m3d.Manifold.batch_boolean(bores, m3d.OpType.Add)
+
+
+@dataclass(frozen=True)
+class Boss:
+    """A joint boss: a cylinder (radius, length mm) on the axis through ``point`` along ``axis``,
+    centred ``offset`` mm along it, with a bore of ``bore_radius`` through."""
+
+    point: tuple[float, float, float]
+    axis: tuple[float, float, float]
+    offset: float
+    radius: float
+    length: float
+    bore_radius: float
+
+    @property
+    def centre(self) -> np.ndarray:
+        d = np.asarray(self.axis, float)
+        return np.asarray(self.point, float) + self.offset * d / np.linalg.norm(d)
+
+
+@dataclass(frozen=True)
+class Bar:
+    """A round bar (capsule) between two points, radius mm."""
+
+    p0: tuple[float, float, float]
+    p1: tuple[float, float, float]
+    radius: float
+
+
+@dataclass(frozen=True)
+class Cup:
+    """A counterweight pocket: a cylinder (outer radius, height) standing on ``point`` along
+    ``axis``, with a blind pocket (radius, depth) open at its far end, to be filled."""
+
+    point: tuple[float, float, float]
+    axis: tuple[float, float, float]
+    outer_radius: float
+    height: float
+    pocket_radius: float
+    pocket_depth: float
+
+    @property
+    def pocket_centre(self) -> np.ndarray:
+        d = np.asarray(self.axis, float) / np.linalg.norm(self.axis)
+        return np.asarray(self.point, float) + (self.height - self.pocket_depth / 2) * d
+
+    @property
+    def pocket_volume(self) -> float:
+        return math.pi * self.pocket_radius ** 2 * self.pocket_depth
+
+
+def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segments: int = 48) -> m3d.Manifold:
+    """A link as one solid: bosses, bars and cups united, then every bore and pocket cut."""
+    add = [_place(m3d.Manifold.cylinder(b.length, b.radius, -1.0, segments, True), np.asarray(b.point, float),
+                  np.asarray(b.axis, float), b.offset) for b in bosses]
+    for bar in bars:
+        ball = m3d.Manifold.sphere(bar.radius, segments)
+        add.append(m3d.Manifold.batch_hull([ball.translate(tuple(map(float, bar.p0))),
+                                            ball.translate(tuple(map(float, bar.p1)))]))
+    for c in cups:
+        add.append(_place(m3d.Manifold.cylinder(c.height, c.outer_radius, -1.0, segments, False), np.asarray(c.point, float),
+                          np.asarray(c.axis, float), 0.0))
+    cut = [_place(m3d.Manifold.cylinder(b.length + 0.2, b.bore_radius, -1.0, segments, True), np.asarray(b.point, float),
+                  np.asarray(b.axis, float), b.offset) for b in bosses]
+    for c in cups:
+        start = c.height - c.pocket_depth
+        cut.append(_place(m3d.Manifold.cylinder(c.pocket_depth + 0.1, c.pocket_radius, -1.0, segments, False),
+                          np.asarray(c.point, float), np.asarray(c.axis, float), start))
+    return m3d.Manifold.batch_boolean(add, m3d.OpType.Add) - m3d.Manifold.batch_boolean(cut, m3d.OpType.Add)
+
+
+def link_interior(bosses: list[Boss], bars: list[Bar], cups: list[Cup], shell: float, segments: int = 48
+                  ) -> m3d.Manifold:
+    """The infilled core of ``link_solid``: every feature shrunk by ``shell`` mm (the larger of the
+    wall and skin thickness) and every bore and pocket grown by it. Each feature's own erosion is
+    exact; where features join, the core is a little smaller than the true erosion (the shell is
+    counted a little heavier)."""
+    sb = [Boss(b.point, b.axis, b.offset, b.radius - shell, b.length - 2 * shell, b.bore_radius + shell)
+          for b in bosses if b.radius - shell > b.bore_radius + shell and b.length > 2 * shell]
+    sr = [Bar(b.p0, b.p1, b.radius - shell) for b in bars if b.radius > shell]
+    sc = []
+    for c in cups:
+        d = np.asarray(c.axis, float) / np.linalg.norm(c.axis)
+        sc.append(Cup(tuple(np.asarray(c.point) + shell * d), c.axis, c.outer_radius - shell, c.height - 2 * shell,
+                      c.pocket_radius + shell, c.pocket_depth + shell))
+    core = link_solid(sb, sr, sc, segments)
+    # bores of every boss (also of bosses too thin for a core) cut through the core
+    cut = [_place(m3d.Manifold.cylinder(b.length + 0.2, b.bore_radius + shell, -1.0, segments, True),
+                  np.asarray(b.point, float), np.asarray(b.axis, float), b.offset) for b in bosses]
+    return core - m3d.Manifold.batch_boolean(cut, m3d.OpType.Add) if cut else core
+
+
+def cylinder_capsules(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, spokes: int = 4
+                      ) -> tuple[np.ndarray, np.ndarray]:
+    """Capsules that together contain a cylinder: ``spokes`` diameters of its mid-plane disc with
+    radius √((length/2)² + (radius·sin(π/2k))²) — reaching past the flat faces by far less than
+    one capsule along the axis would for a short, fat boss. ((k, 2, 3), (k,))"""
+    d = np.asarray(axis, float) / np.linalg.norm(axis)
+    u = np.cross(d, [1.0, 0, 0] if abs(d[0]) < 0.9 else [0, 1.0, 0])
+    u /= np.linalg.norm(u)
+    v = np.cross(d, u)
+    ends, k = [], spokes
+    for i in range(k):
+        t = math.pi * i / k
+        w = radius * (math.cos(t) * u + math.sin(t) * v)
+        ends.append([centre - w, centre + w])
+    r = math.hypot(length / 2, radius * math.sin(math.pi / (2 * k)))
+    return np.asarray(ends), np.full(k, r)
+
+
+def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = ()) -> tuple[np.ndarray, np.ndarray, list[int]]:
+    """Capsules that contain the features: ((k, 2, 3) segment ends mm, (k,) radii mm, and for each
+    capsule the index of its feature in bosses + bars + cups). Bosses and cups are covered by
+    ``cylinder_capsules``; a bar is a capsule exactly."""
+    ends, radii, owner = [], [], []
+    for n, b in enumerate(bosses):
+        e, r = cylinder_capsules(b.centre, np.asarray(b.axis, float), b.radius, b.length)
+        ends += list(e)
+        radii += list(r)
+        owner += [n] * len(r)
+    for n, bar in enumerate(bars):
+        ends.append([bar.p0, bar.p1])
+        radii.append(bar.radius)
+        owner.append(len(bosses) + n)
+    for n, c in enumerate(cups):
+        d = np.asarray(c.axis, float) / np.linalg.norm(c.axis)
+        e, r = cylinder_capsules(np.asarray(c.point, float) + d * c.height / 2, d, c.outer_radius, c.height)
+        ends += list(e)
+        radii += list(r)
+        owner += [len(bosses) + len(bars) + n] * len(r)
+    return np.asarray(ends, float).reshape(-1, 2, 3), np.asarray(radii, float), owner

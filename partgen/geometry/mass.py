@@ -39,6 +39,7 @@ class MassModel:
     centre: tuple[float, float, float]
     solid_mass: float
     solid_centre: tuple[float, float, float]
+    interior_centre: tuple[float, float, float]
 
     def mass_if_infill(self, infill: float, density: float) -> float:
         """The mass the same part would have at another infill fraction, g."""
@@ -57,16 +58,21 @@ def volume_centroid(solid: m3d.Manifold) -> tuple[float, np.ndarray]:
     return float(volume), centroid
 
 
-def printed_mass(solid: m3d.Manifold, density: float, settings: PrintSettings) -> MassModel:
-    """The part's mass and centre of mass as printed. density: g/mm³."""
+def printed_mass(solid: m3d.Manifold, density: float, settings: PrintSettings,
+                 interior: m3d.Manifold | None = None) -> MassModel:
+    """The part's mass and centre of mass as printed. density: g/mm³. ``interior``: the infilled
+    core if the caller can build it directly (faster than the Minkowski erosion for parts made of
+    simple features); it must lie inside ``solid``."""
     if not 0 <= settings.infill <= 1:
         raise ValueError(f"infill must be a fraction in [0, 1], got {settings.infill}")
     vs, cs = volume_centroid(solid)
-    core = m3d.Manifold.cylinder(2 * settings.skin, settings.wall, -1.0, settings.segments, True)
-    interior = solid.minkowski_difference(core)
+    if interior is None:
+        core = m3d.Manifold.cylinder(2 * settings.skin, settings.wall, -1.0, settings.segments, True)
+        interior = solid.minkowski_difference(core)
     vi, ci = volume_centroid(interior)
     shell = vs - vi
     cshell = (vs * cs - vi * ci) / shell if shell > 0 else cs
     mass = density * (shell + settings.infill * vi)
     centre = (density * shell * cshell + density * settings.infill * vi * ci) / mass
-    return MassModel(vs, shell, vi, mass, tuple(float(x) for x in centre), density * vs, tuple(float(x) for x in cs))
+    return MassModel(vs, shell, vi, mass, tuple(float(x) for x in centre), density * vs, tuple(float(x) for x in cs),
+                     tuple(float(x) for x in ci))

@@ -1,0 +1,59 @@
+"""A validated Bennett butterfly design → the kit's parameters (deg → rad, g/cm³ → g/mm³)."""
+
+from __future__ import annotations
+
+import math
+
+from ..design.bennett_butterfly import BennettButterfly, BennettParams
+from ..design.mechanism import PrinterLimits
+from ..errors import ConfigError, DesignError
+from .loader import LoadedDesign
+
+__all__ = ["resolve_bennett"]
+
+
+def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
+    d, p = loaded.design, loaded.printer
+    k, parts, cw = d.linkage, d.parts, d.counterweights
+    s1 = k.scales[0]
+    try:
+        if k.beta_deg is None:
+            bb = BennettButterfly.from_twist(k.a_mm, k.b_mm, math.radians(k.alpha_deg), k.scales[1] / s1,
+                                             k.scales[2] / s1, k.scales[3] / s1)
+        else:
+            bb = BennettButterfly(k.a_mm, k.b_mm, math.radians(k.alpha_deg), math.radians(k.beta_deg),
+                                  k.scales[1] / s1, k.scales[2] / s1, k.scales[3] / s1)
+    except DesignError as e:
+        raise ConfigError(loaded.path, "linkage.beta_deg" if k.beta_deg is not None else "linkage.b_mm", e.problem) from None
+    if len(set(cw.links)) != 3:
+        raise ConfigError(loaded.path, "counterweights.links", "three different links")
+    if cw.wall_mm * 2 >= cw.outer_diameter_mm or cw.wall_mm >= cw.height_mm:
+        raise ConfigError(loaded.path, "counterweights.wall_mm", "leaves no pocket inside the cup")
+    if d.pin.diameter_mm + d.pin.clearance_diametral_mm >= parts.boss_diameter_mm - 2 * p.min_wall_mm:
+        raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore leaves less than the printer's {p.min_wall_mm} mm "
+                          f"wall in a {parts.boss_diameter_mm} mm boss")
+    if d.pin.diameter_mm + d.pin.clearance_diametral_mm < p.min_hole_diameter_mm:
+        raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore is below the printer's smallest reliable hole "
+                          f"({p.min_hole_diameter_mm} mm)")
+    fixed = None
+    if parts.layout != "auto":
+        missing = sorted(set(range(1, 13)) - set(parts.layout.layers))
+        if missing:
+            raise ConfigError(loaded.path, "parts.layout.layers", f"no layer for links {missing}")
+        fixed = (dict(parts.layout.layers), dict(parts.layout.shifts_mm))
+    return BennettParams(
+        name=d.name, bb=bb, home=math.radians(k.home_angle_deg),
+        workspace=(math.radians(k.workspace_deg[0]), math.radians(k.workspace_deg[1])),
+        boss_radius=parts.boss_diameter_mm / 2, boss_length=parts.boss_length_mm, axial_gap=parts.axial_gap_mm,
+        bar_radius=parts.bar_diameter_mm / 2, pin_radius=d.pin.diameter_mm / 2,
+        pin_clearance=d.pin.clearance_diametral_mm, pin_density=d.pin.density_g_cm3 / 1000.0,
+        offset_step=parts.offset_step_mm, offset_max=parts.offset_max_mm, cw_links=tuple(cw.links),
+        cw_distance=tuple(cw.distance_mm), cw_outer_radius=cw.outer_diameter_mm / 2, cw_height=cw.height_mm,
+        cw_wall=cw.wall_mm, fill_name=cw.fill.name, fill_density=cw.fill.density_g_cm3 / 1000.0,
+        density=d.material.density_g_cm3 / 1000.0, material=d.material.name, print_wall=d.print.wall_mm,
+        print_skin=d.print.skin_mm, infill=d.print.infill_percent / 100.0, base_height=d.base.height_mm,
+        tolerance=d.checks.balance_tolerance_mm, grid=tuple(d.checks.grid),
+        infill_error=d.checks.infill_error_percent_points / 100.0, layers=parts.layers, fixed_layout=fixed,
+        mass_scale=tuple(sorted(d.checks.mass_scale.items())),
+        printer=PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
+                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm), segments=parts.segments)
