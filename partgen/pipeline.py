@@ -110,6 +110,9 @@ def build(path: str | Path, dest: str | Path | None = None, progress=None) -> tu
     raw = load_design(path)
     if raw.design.__class__.__name__ == "WristDesign":
         return build_wrist_kit(raw, dest, progress)
+    if raw.design.__class__.__name__ == "BennettDesign":
+        from .pipeline_bennett import build_bennett_kit
+        return build_bennett_kit(raw, dest, progress)
     loaded = load(path)
     try:
         kit = build_kit(loaded.mechanism, loaded.params, progress)
@@ -151,6 +154,9 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
     raw = load_design(target / "design.yaml" if kit_dir else target)
     if raw.design.__class__.__name__ == "WristDesign":
         return check_wrist_design(raw, progress)
+    if raw.design.__class__.__name__ == "BennettDesign":
+        from .pipeline_bennett import check_bennett_design
+        return check_bennett_design(raw)
     loaded = load(target / "design.yaml" if kit_dir else target)
     try:
         kit = build_kit(loaded.mechanism, loaded.params)

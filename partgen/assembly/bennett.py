@@ -220,6 +220,18 @@ class Sweep:
         k = int(np.argmin(c))
         return float(c[k]), k
 
+    def profile(self, lay: Layout) -> np.ndarray:
+        """(n,) least clearance over all pairs at each sampled angle (mm)."""
+        caps = self.capsules(lay)
+        out = np.full(self.n, np.inf)
+        for a, b in itertools.combinations(range(13), 2):
+            key = (a, b, tuple(caps[a][2]), tuple(caps[b][2]))
+            if self.pair(caps, a, b) is None:
+                continue
+            c = capsule_clearance(caps[a][0], caps[a][1], caps[b][0], caps[b][1])
+            out = np.minimum(out, np.where(self.masks[key][None], c, np.inf).min(axis=(1, 2)))
+        return out
+
     def all(self, lay: Layout, links: set[int] | None = None, caps=None, old: dict | None = None):
         """Every pair's (clearance, angle index); with ``links`` and ``old``, only pairs touching them recomputed."""
         caps = caps or self.capsules(lay)
@@ -331,12 +343,32 @@ class BennettKit:
         return bbf.link_frames(bbf.pose(self.params.bb, q1, q4))
 
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
-        """Placement of every part at the home pose (``theta`` turns the whole linkage about S)."""
-        q1, q4 = home_inputs(self.params.home, theta)
+        """Placement (4, 4) of every part at the home pose (``theta`` turns the linkage about S)."""
+        return self.placements(*home_inputs(self.params.home, theta))
+
+    def placements(self, q1: float, q4: float) -> dict[str, np.ndarray]:
+        """Placement (4, 4) of every part, pins included, at inputs (q1, q4) rad."""
         fr = self.frames(q1, q4)
         out = {f"link{i:02d}": fr[i][0] for i in range(1, 13)}
         out["base"] = np.eye(4)
+        for j in bbf.JOINTS:
+            owner = self.layout.members(j)[0]
+            lo, hi = pin_span(self.params, self.layout, j)
+            pt, ax = (np.zeros(3), np.array([0.0, 0.0, 1.0])) if owner == BASE else self.bodies[owner][j]
+            local = _axis_frame(pt + (lo + hi) / 2 * ax, ax)
+            out[f"pin_{j}"] = (np.eye(4) if owner == BASE else fr[owner][0]) @ local
         return out
+
+
+def _axis_frame(origin: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    """(4, 4) frame at ``origin`` whose z is ``axis``."""
+    z = axis / np.linalg.norm(axis)
+    x = np.cross([0.0, 1.0, 0.0] if abs(z[1]) < 0.9 else [1.0, 0.0, 0.0], z)
+    x /= np.linalg.norm(x)
+    T = np.eye(4)
+    T[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    T[:3, 3] = origin
+    return T
 
 
 def pin_span(p: BennettParams, lay: Layout, joint: str) -> tuple[float, float]:
@@ -430,10 +462,10 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     figures = {}
     if lay is None and p.fixed_layout is not None:
         lay = Layout({BASE: 0, **p.fixed_layout[0]}, dict(p.fixed_layout[1]))
-        figures["layout"] = "fixed"
+        figures["layout_source"] = "fixed"
     if lay is None:
         lay, bodies, angles, step, clear = layout(p, say)
-        figures.update({"layout": "auto", "search_clearance_mm": clear})
+        figures.update({"layout_source": "auto", "search_clearance_mm": clear})
     pins = _pin_masses(p, lay, bodies)
     q1g, q4g = _grid(p)
     P = bbf.pose(p.bb, q1g, q4g)

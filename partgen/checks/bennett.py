@@ -86,6 +86,19 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
             res.add(Finding("interference", "fail", f"{_name(a)} and {_name(b)} overlap by {-c:.2f} mm (capsule "
                             f"hulls) at {math.degrees(angles[k]):.1f}° between links 1 and 4",
                             (_name(a), _name(b)), theta=float(angles[k]), value=c, unit="mm"))
+    # how far the kit moves freely either side of home (capsule hulls), beyond the required workspace
+    wide, _ = A.shape_samples(p, math.radians(5), math.radians(175), speed)
+    prof = A.Sweep(p, wide, kit.bodies).profile(kit.layout)
+    k0 = int(np.argmin(abs(wide - p.home)))
+    lo = hi = k0
+    if prof[k0] >= 0:
+        while lo > 0 and prof[lo - 1] >= 0:
+            lo -= 1
+        while hi < len(wide) - 1 and prof[hi + 1] >= 0:
+            hi += 1
+        res.figures["free_range_deg"] = [math.degrees(wide[lo]), math.degrees(wide[hi])]
+    else:
+        res.figures["free_range_deg"] = [float("nan"), float("nan")]
     say("stacks")
     # parts sharing a joint: their features there are exempt from the capsule sweep; measure exactly
     solids = {int(pt.name[4:]): pt.solid for pt in kit.parts if pt.name.startswith("link")}

@@ -40,6 +40,9 @@ def run(args) -> int:
     loaded, kit, man, dest = pipeline.build(args.config, args.out, progress)
     progress.done()
     mech = loaded.mechanism
+    if getattr(loaded, "kind", "") == "bennett_butterfly":
+        print(bennett_table(man, dest, time.perf_counter() - t0))
+        return 0
     if mech is None:  # a wrist pair
         for p in man["parts"]:
             print(f"{p['name']:<8}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 {p['mass_g']:7.1f} g  "
@@ -64,3 +67,24 @@ def run(args) -> int:
     print(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {time.perf_counter() - t0:.2f} s"
           + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
     return 0
+
+
+def bennett_table(man: dict, dest, seconds: float) -> str:
+    """The bill of a Bennett butterfly kit: every link's mass solid / as printed / fill, the pins."""
+    d = man["design"]
+    rows = d["bill"]
+    printed = sum(r["printed_g"] or 0 for r in rows)
+    fill = sum(r["fill_g"] for r in rows)
+    pins = sum(r["pins_g"] for r in rows if r["part"].startswith("pin"))
+    lines = [f"{d['name']}: Bennett a = {d['a_mm']:g} mm, b = {d['b_mm']:g} mm, α = {d['alpha_deg']:g}°, "
+             f"β = {d['beta_deg']:.2f}°, scales {', '.join(f'{s:g}' for s in d['scales'])}",
+             f"{'part':<10}{'layer':>6}{'solid g':>9}{'printed g':>11}{'fill g':>8}  (printed at {d['infill_percent']:g} % infill)"]
+    for r in rows:
+        if r["part"].startswith("link"):
+            lines.append(f"{r['part']:<10}{r['layer']:>6}{r['solid_g']:>9.1f}{r['printed_g']:>11.1f}"
+                         + (f"{r['fill_g']:>8.1f}" if r["fill_g"] else ""))
+    lines.append(f"18 steel pins {pins:.0f} g; printed links {printed:.0f} g; counterweight fill {fill:.0f} g; "
+                 f"stack shifts (mm along the joint axes) {d['layout']['shifts_mm']}")
+    lines.append(f"wrote {dest}/ ({len(man['parts'])} STL, manifest.json, assembly.glb, design.yaml with the layout "
+                 f"pinned) in {seconds:.1f} s")
+    return "\n".join(lines)
