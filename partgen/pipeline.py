@@ -261,6 +261,9 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
     raw = load_design(path)
     if raw.design.__class__.__name__ == "WristDesign":
         return report_wrist(raw, dest, say)
+    if raw.design.__class__.__name__ == "BennettDesign":
+        from .pipeline_bennett import report_bennett
+        return report_bennett(raw, dest, say)
     say("check")
     loaded, kit, result, _ = check(path, samples, write_plates=False)
     mech, params = loaded.mechanism, loaded.params

@@ -125,7 +125,8 @@ def _base_features(p: BennettParams, lay: Layout):
     return [boss], [column]
 
 
-def link_capsules(p: BennettParams, lay: Layout, bodies: dict) -> dict[int, tuple[np.ndarray, np.ndarray, list]]:
+def link_capsules(p: BennettParams, lay: Layout, bodies: dict, delta: dict | None = None
+                  ) -> dict[int, tuple[np.ndarray, np.ndarray, list]]:
     """link (0 = base) -> (capsule ends (k, 2, 3) in the body frame, radii (k,), what each capsule
     is: ("boss", joint) or ("bar", joints...))."""
     out = {}
@@ -136,7 +137,7 @@ def link_capsules(p: BennettParams, lay: Layout, bodies: dict) -> dict[int, tupl
             cups = []
             tags = [("boss", "S14"), ("bar", "S14")]  # the column hangs from the boss
         else:
-            bosses, bars, cups = _link_features(p, link, lay, bodies[link])
+            bosses, bars, cups = _link_features(p, link, lay, bodies[link], delta)
             names = sorted(bodies[link])
             tags = [("boss", j) for j in names]
             cs = sorted(((float(b.point[0]), names[k]) for k, b in enumerate(bosses)))
@@ -195,15 +196,15 @@ class Sweep:
     """Capsule clearances of every pair of parts over fixed shape angles, updated incrementally as
     the layout changes (the frames are computed once)."""
 
-    def __init__(self, p: BennettParams, angles: np.ndarray, bodies: dict):
-        self.p, self.bodies = p, bodies
+    def __init__(self, p: BennettParams, angles: np.ndarray, bodies: dict, delta: dict | None = None):
+        self.p, self.bodies, self.delta = p, bodies, delta
         q1, q4 = home_inputs(angles)
         self.frames = bbf.link_frames(bbf.pose(p.bb, q1, q4))
         self.n = len(angles)
         self.masks: dict = {}
 
     def capsules(self, lay: Layout) -> dict[int, tuple[np.ndarray, np.ndarray, list]]:
-        caps = link_capsules(self.p, lay, self.bodies)
+        caps = link_capsules(self.p, lay, self.bodies, self.delta)
         return {k: (_world(self.frames, caps, k, self.n), caps[k][1], caps[k][2]) for k in caps}
 
     def pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
@@ -267,26 +268,28 @@ def point_speed(p: BennettParams, lo: float, hi: float, n: int = 361) -> float:
     return v + omega * reach
 
 
-def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=None, layers: int = 6
-                   ) -> tuple[Layout, float]:
+def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=None, layers: int = 6,
+                   rounds: int = 6, start: Layout | None = None, delta: dict | None = None) -> tuple[Layout, float]:
     """Local search over each link's layer (1 … ``layers`` − 1; the base is 0) and each joint's stack
-    shift (−offset_max … offset_max in offset_step) that removes capsule overlap over ``angles``, then
-    maximises the least clearance; links sharing a joint stay on different layers; ties go to the
+    shift (−offset_max … offset_max in offset_step) that removes capsule overlap (and clearance short
+    of a bar's radius) over ``angles``, then maximises the least clearance; links sharing a joint stay on different layers; ties go to the
     smaller offsets. Returns the layout and its least clearance (mm)."""
-    sweep = Sweep(p, angles, bodies)
+    sweep = Sweep(p, angles, bodies, delta)
 
     def ok(l: Layout) -> bool:
         return all(len({l.layer[i] for i in l.members(j)}) == len(l.members(j)) for j in bbf.JOINTS)
 
+    margin = p.bar_radius  # the search sweeps every fourth sample: aim for a bar's radius of room
+
     def score(res: dict, l: Layout) -> tuple[float, float, float]:
         c = [v for v, _ in res.values()]
-        return sum(min(v, 0.0) for v in c), min(c), -sum(l.layer.values()) - sum(map(abs, l.shift.values()))
+        return sum(min(v - margin, 0.0) for v in c), min(c), -sum(l.layer.values()) - sum(map(abs, l.shift.values()))
 
-    lay = default_layout()
+    lay = start or default_layout()
     res = sweep.all(lay)
     best = score(res, lay)
     shifts = np.arange(-p.offset_max, p.offset_max + 1e-9, p.offset_step)
-    for rnd in range(6):
+    for rnd in range(rounds):
         improved = False
         moves = [("layer", i, k) for i in range(1, 13) for k in range(1, layers)]
         moves += [("shift", j, float(c)) for j in bbf.JOINTS for c in shifts]
@@ -337,6 +340,7 @@ class BennettKit:
     pins: dict[int, list[tuple[float, np.ndarray]]]  # link -> [(mass g, body point)]
     cups: dict[int, Cup]
     fill: dict[str, dict[int, float]]  # model -> link -> fill mass g
+    delta: dict[int, np.ndarray]  # link -> (3,) mm: its pocket's offset from the nominal point
     figures: dict = field(default_factory=dict)
 
     def frames(self, q1, q4) -> dict[int, np.ndarray]:
@@ -450,9 +454,13 @@ def layout(p: BennettParams, progress=None) -> tuple[Layout, dict, np.ndarray, f
     speed = point_speed(p, *p.workspace)
     # the search samples more coarsely (4× the step); the check sweeps at the full step
     angles, step = shape_samples(p, *p.workspace, speed)
-    coarse = angles[:: 4] if len(angles) > 8 else angles
-    lay, clear = choose_offsets(p, coarse, bodies, progress, p.layers)
+    lay, clear = choose_offsets(p, coarse_samples(angles), bodies, progress, p.layers)
     return lay, bodies, angles, step, clear
+
+
+def coarse_samples(angles: np.ndarray) -> np.ndarray:
+    """Every fourth sample and both ends: what the layout search sweeps (the check sweeps them all)."""
+    return angles if len(angles) <= 8 else np.unique(np.concatenate([angles[::4], angles[-1:]]))
 
 
 def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) -> BennettKit:
@@ -500,6 +508,23 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
         delta = new
         for i in p.cw_links:
             make(i, delta)
+    if figures.get("layout_source") == "auto":
+        # the pockets moved: refine the layout with them where they are, then size the weights again
+        speed = point_speed(p, *p.workspace)
+        angles, _ = shape_samples(p, *p.workspace, speed)
+        lay, clear = choose_offsets(p, coarse_samples(angles), bodies, say, p.layers, rounds=2, start=lay, delta=delta)
+        figures["search_clearance_mm"] = clear
+        pins = _pin_masses(p, lay, bodies)
+        for i in range(1, 13):
+            make(i, delta)
+        for rnd in range(3):
+            say(f"counterweights, refined round {rnd + 1}")
+            m, c = _combine({i: (lm.fdm_mass, lm.fdm_centre) for i, lm in masses.items()}, pins)
+            nominal = [(i, cw_nominal(p, i, bodies[i], lay)) for i in p.cw_links]
+            _, dl, _ = bbf.solve_counterweights(P, m, c, nominal)
+            delta = {i: d for (i, _), d in zip(nominal, dl)}
+            for i in p.cw_links:
+                make(i, delta)
     m, c = _combine({i: (lm.fdm_mass, lm.fdm_centre) for i, lm in masses.items()}, pins)
     at = [(i, cups[i].pocket_centre) for i in p.cw_links]
     fdm, _ = bbf.solve_point_masses(P, m, c, at)
@@ -516,7 +541,7 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
         parts.append(Part(f"pin_{j}", "pin", _pin_solid(p, hi - lo), printed=False,
                           info=(("diameter_mm", 2 * p.pin_radius), ("length_mm", round(hi - lo, 3)),
                                 ("material", "steel dowel"), ("joint", j))))
-    kit = BennettKit(p, lay, tuple(parts), bodies, masses, pins, cups, fill, figures)
+    kit = BennettKit(p, lay, tuple(parts), bodies, masses, pins, cups, fill, delta, figures)
     return kit
 
 

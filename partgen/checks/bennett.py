@@ -74,7 +74,7 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
     say("interference")
     speed = A.point_speed(p, *p.workspace)
     angles, step = A.shape_samples(p, *p.workspace, speed)
-    sweep = A.Sweep(p, angles, kit.bodies)
+    sweep = A.Sweep(p, angles, kit.bodies, kit.delta)
     clear = sweep.all(kit.layout)
     least = min(clear.items(), key=lambda kv: kv[1][0])
     res.figures.update({"interference_samples": len(angles), "step_deg": math.degrees(step),
@@ -88,7 +88,7 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
                             (_name(a), _name(b)), theta=float(angles[k]), value=c, unit="mm"))
     # how far the kit moves freely either side of home (capsule hulls), beyond the required workspace
     wide, _ = A.shape_samples(p, math.radians(5), math.radians(175), speed)
-    prof = A.Sweep(p, wide, kit.bodies).profile(kit.layout)
+    prof = A.Sweep(p, wide, kit.bodies, kit.delta).profile(kit.layout)
     k0 = int(np.argmin(abs(wide - p.home)))
     lo = hi = k0
     if prof[k0] >= 0:

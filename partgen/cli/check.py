@@ -65,7 +65,8 @@ def _bennett_table(loaded, result, seconds: float) -> str:
              + (f", what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else ""),
              f"  least clearance {f['least_clearance_mm']:.2f} mm ({' – '.join(f['least_clearance_parts'])} at "
              f"{f['least_clearance_angle_deg']:.1f}°); stacked bosses overlap {f['joint_stack_overlap_mm3']:.3f} mm³; "
-             f"moves freely from {f['free_range_deg'][0]:.1f}° to {f['free_range_deg'][1]:.1f}°"]
+             + (f"moves freely from {f['free_range_deg'][0]:.1f}° to {f['free_range_deg'][1]:.1f}°"
+                if math.isfinite(f["free_range_deg"][0]) else "capsule hulls overlap at the home pose")]
     lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
     lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s")
     return "\n".join(lines)

@@ -25,6 +25,9 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
                                   k.scales[1] / s1, k.scales[2] / s1, k.scales[3] / s1)
     except DesignError as e:
         raise ConfigError(loaded.path, "linkage.beta_deg" if k.beta_deg is not None else "linkage.b_mm", e.problem) from None
+    if parts.bar_diameter_mm > parts.boss_length_mm:
+        raise ConfigError(loaded.path, "parts.bar_diameter_mm", f"{parts.bar_diameter_mm} mm is thicker than a boss is long "
+                          f"({parts.boss_length_mm} mm): a bar would stand proud of its boss into the next one on the pin")
     if len(set(cw.links)) != 3:
         raise ConfigError(loaded.path, "counterweights.links", "three different links")
     if cw.wall_mm * 2 >= cw.outer_diameter_mm or cw.wall_mm >= cw.height_mm:

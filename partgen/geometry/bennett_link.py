@@ -122,7 +122,8 @@ def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segmen
     for c in cups:
         add.append(_place(m3d.Manifold.cylinder(c.height, c.outer_radius, -1.0, segments, False), np.asarray(c.point, float),
                           np.asarray(c.axis, float), 0.0))
-    cut = [_place(m3d.Manifold.cylinder(b.length + 0.2, b.bore_radius, -1.0, segments, True), np.asarray(b.point, float),
+    # bores run a little past the faces (bars meeting a boss end within its faces: bar radius ≤ half its length)
+    cut = [_place(m3d.Manifold.cylinder(b.length + 0.4, b.bore_radius, -1.0, segments, True), np.asarray(b.point, float),
                   np.asarray(b.axis, float), b.offset) for b in bosses]
     for c in cups:
         start = c.height - c.pocket_depth
