@@ -218,6 +218,9 @@ def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | 
     raw = load_design(path)
     if raw.design.__class__.__name__ == "WristDesign":
         return trace_wrist(raw, plots_dir)
+    if raw.design.__class__.__name__ == "BennettDesign":
+        raise ConfigError(raw.path, "kind", "a bennett_butterfly draws no curve to trace: `partgen report` draws its "
+                          "poses and its centre-of-mass trace")
     loaded = load(path)
     mech = loaded.mechanism
     theta = 2 * np.pi * np.arange(samples) / samples

@@ -125,9 +125,9 @@ def test_ten_percent_heavier_link_shows(kit):
 
 
 def test_stacks_without_a_gap_are_caught(kit):
-    """Seeded fault: bosses on a pin with no axial gap (pitch shorter than a boss) overlap, and the
+    """Seeded fault: bosses on a pin closer than a boss is long overlap, and the
     exact stack measurement finds it."""
-    p = dataclasses.replace(kit.params, axial_gap=-2.0)
+    p = dataclasses.replace(kit.params, axial_gap=-5.0)  # pitch 3 mm: two layers apart is 6 mm < an 8 mm boss
     bad = A.build_bennett(p, lay=kit.layout)
     r = check_bennett(bad)
     assert r.figures["joint_stack_overlap_mm3"] > 1.0 and not r.ok

@@ -353,8 +353,8 @@ class BennettBase(Strict):
 
 
 class BennettChecks(Strict):
-    balance_tolerance_mm: Pos = 0.5
-    grid: Annotated[list[Annotated[int, Field(ge=2, le=400)]], Field(min_length=2, max_length=2)] = [24, 25]
+    balance_tolerance_mm: Pos = 0.1
+    grid: Annotated[list[Annotated[int, Field(ge=2, le=400)]], Field(min_length=2, max_length=2)] = [24, 21]
     infill_error_percent_points: NonNeg = 5.0
     mass_scale: dict[Annotated[int, Field(ge=1, le=12)], Pos] = Field(
         default={}, description="what-if: a link's mass times this, counterweights not re-sized (seeded faults)")
