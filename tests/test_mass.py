@@ -62,3 +62,18 @@ def test_five_percent_infill_error():
 def test_volume_centroid_of_a_translated_box():
     v, c = volume_centroid(m3d.Manifold.cube((2.0, 4.0, 6.0)).translate((1.0, -2.0, 3.0)))
     assert v == pytest.approx(48.0) and np.allclose(c, (2.0, 0.0, 6.0))
+
+
+def test_layers_agree_with_the_minkowski_erosion():
+    """The layer-by-layer interior is the erosion by the wall × skin cylinder: checked against
+    manifold3d's own Minkowski difference on a tilted bar joined to a boss with a bore."""
+    from partgen.geometry.bennett_link import Bar, Boss, link_solid
+    from partgen.geometry.mass import interior
+
+    part = link_solid([Boss((0, 0, 0), (0.3, 0.2, 1.0), 0.0, 10.0, 8.0, 5.15)], [Bar((0, 0, 0), (50, 0, 25), 4.0)])
+    s = PrintSettings(wall=1.2, skin=1.0)
+    eroded = part.minkowski_difference(m3d.Manifold.cylinder(2 * s.skin, s.wall, -1.0, 48, True))
+    ve, ce = volume_centroid(eroded)
+    vi, ci = interior(part, s)
+    assert vi == pytest.approx(ve, rel=0.01)
+    assert np.linalg.norm(ci - ce) < 0.2

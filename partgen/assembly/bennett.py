@@ -19,7 +19,7 @@ import numpy as np
 from ..design import bennett_butterfly as bbf
 from ..design.balanced import LINKS
 from ..design.bennett_butterfly import BennettParams
-from ..geometry.bennett_link import Bar, Boss, Cup, capsules, link_interior, link_solid
+from ..geometry.bennett_link import Bar, Boss, Cup, capsules, link_solid
 from ..geometry.capsules import capsule_clearance
 from ..geometry.mass import PrintSettings, printed_mass
 from ..geometry.parts import Part
@@ -128,38 +128,52 @@ def _base_features(p: BennettParams, lay: Layout):
 def link_capsules(p: BennettParams, lay: Layout, bodies: dict, delta: dict | None = None
                   ) -> dict[int, tuple[np.ndarray, np.ndarray, list]]:
     """link (0 = base) -> (capsule ends (k, 2, 3) in the body frame, radii (k,), what each capsule
-    is: ("boss", joint) or ("bar", joints...))."""
-    out = {}
-    bodies = dict(bodies)
-    for link in range(0, 13):
-        if link == BASE:
-            bosses, bars = _base_features(p, lay)
-            cups = []
-            tags = [("boss", "S14"), ("bar", "S14")]  # the column hangs from the boss
-        else:
-            bosses, bars, cups = _link_features(p, link, lay, bodies[link], delta)
-            names = sorted(bodies[link])
-            tags = [("boss", j) for j in names]
-            cs = sorted(((float(b.point[0]), names[k]) for k, b in enumerate(bosses)))
-            for (_, a), (_, b) in zip(cs, cs[1:]):
-                tags += [("bar", a), ("bar",), ("bar", b)]  # out of boss a, across, into boss b
-            if cups:
-                ref = next(j for j in names if np.linalg.norm(bodies[link][j][0]) < 1e-9)
-                tags += [("bar", ref), ("bar",), ("cup",)]
-        ends, radii, owner = capsules(bosses, bars, cups)
-        tags = [tags[k] for k in owner]
-        pins = [j for j in bbf.JOINTS if lay.members(j)[0] == link]
-        if pins:
-            pe, pr = [], []
-            for j in pins:
-                lo, hi = pin_span(p, lay, j)
-                pt, ax = ((np.zeros(3), np.array([0.0, 0, 1])) if link == BASE else bodies[link][j])
-                pe.append([pt + lo * ax, pt + hi * ax])
-                pr.append(p.pin_radius)
-                tags.append(("pin", j))
-            ends, radii = np.concatenate([ends, np.asarray(pe)]), np.concatenate([radii, pr])
-        out[link] = (ends, radii, tags)
-    return out
+    is: ("boss", joint), ("bar", joint…), ("cup",) or ("pin", joint))."""
+    return {link: part_capsules(p, lay, bodies, link, delta) for link in range(0, 13)}
+
+
+def _joints_of(link: int) -> list[str]:
+    return ["S14"] if link == BASE else sorted(j for j, (links, _, _) in bbf.JOINTS.items() if link in links)
+
+
+def capsule_key(lay: Layout, link: int, delta: dict | None) -> tuple:
+    """Everything a part's capsules depend on: its layer, and for each of its joints the shift and
+    the members' layers (which decide the pin's span and owner), and its pocket's offset."""
+    d = (delta or {}).get(link)
+    return (link, lay.layer[link], tuple((j, lay.shift.get(j, 0.0), tuple(lay.layer[i] for i in lay.members(j)),
+                                          lay.members(j)) for j in _joints_of(link)),
+            None if d is None else tuple(np.round(np.asarray(d, float), 12)))
+
+
+def part_capsules(p: BennettParams, lay: Layout, bodies: dict, link: int, delta: dict | None = None):
+    """One part's capsules (see ``link_capsules``)."""
+    if link == BASE:
+        bosses, bars = _base_features(p, lay)
+        cups = []
+        tags = [("boss", "S14"), ("bar", "S14")]  # the column hangs from the boss
+    else:
+        bosses, bars, cups = _link_features(p, link, lay, bodies[link], delta)
+        names = sorted(bodies[link])
+        tags = [("boss", j) for j in names]
+        cs = sorted(((float(b.point[0]), names[k]) for k, b in enumerate(bosses)))
+        for (_, a), (_, b) in zip(cs, cs[1:]):
+            tags += [("bar", a), ("bar",), ("bar", b)]  # out of boss a, across, into boss b
+        if cups:
+            ref = next(j for j in names if np.linalg.norm(bodies[link][j][0]) < 1e-9)
+            tags += [("bar", ref), ("bar",), ("cup",)]
+    ends, radii, owner = capsules(bosses, bars, cups)
+    tags = [tags[k] for k in owner]
+    pins = [j for j in _joints_of(link) if lay.members(j)[0] == link]
+    if pins:
+        pe, pr = [], []
+        for j in pins:
+            lo, hi = pin_span(p, lay, j)
+            pt, ax = ((np.zeros(3), np.array([0.0, 0, 1])) if link == BASE else bodies[link][j])
+            pe.append([pt + lo * ax, pt + hi * ax])
+            pr.append(p.pin_radius)
+            tags.append(("pin", j))
+        ends, radii = np.concatenate([ends, np.asarray(pe)]), np.concatenate([radii, pr])
+    return ends, radii, tags
 
 
 def shape_samples(p: BennettParams, lo: float, hi: float, speed: float) -> tuple[np.ndarray, float]:
@@ -202,12 +216,30 @@ class Sweep:
         self.frames = bbf.link_frames(bbf.pose(p.bb, q1, q4))
         self.n = len(angles)
         self.masks: dict = {}
+        self.cache: dict = {}  # capsule_key -> world capsules
+        self.pairs: dict = {}  # (key a, key b) -> least clearance and where
 
     def capsules(self, lay: Layout) -> dict[int, tuple[np.ndarray, np.ndarray, list]]:
-        caps = link_capsules(self.p, lay, self.bodies, self.delta)
-        return {k: (_world(self.frames, caps, k, self.n), caps[k][1], caps[k][2]) for k in caps}
+        """part -> (world capsule ends (n, k, 2, 3), radii (k,), tags, key); cached per part state."""
+        out = {}
+        for k in range(0, 13):
+            key = capsule_key(lay, k, self.delta)
+            hit = self.cache.get(key)
+            if hit is None:
+                ends, radii, tags = part_capsules(self.p, lay, self.bodies, k, self.delta)
+                hit = (_world(self.frames, {k: (ends,)}, k, self.n), radii, tags, key)
+                self.cache[key] = hit
+            out[k] = hit
+        return out
 
     def pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
+        ka, kb = caps[a][3], caps[b][3]
+        if (ka, kb) in self.pairs:
+            return self.pairs[(ka, kb)]
+        self.pairs[(ka, kb)] = r = self._pair(caps, a, b)
+        return r
+
+    def _pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
         shared = _shared(a, b)
         key = (a, b, tuple(caps[a][2]), tuple(caps[b][2]))
         mask = self.masks.get(key)
@@ -482,8 +514,7 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     def make(i: int, delta: dict):
         bosses, bars, cw = _link_features(p, i, lay, bodies[i], delta)
         solid = link_solid(bosses, bars, cw, p.segments)
-        core = link_interior(bosses, bars, cw, max(p.print_wall, p.print_skin), p.segments)
-        mm = printed_mass(solid, p.density, print_settings(p), interior=core)
+        mm = printed_mass(solid, p.density, print_settings(p))
         solids[i] = solid
         masses[i] = LinkMass(mm.solid_mass, np.asarray(mm.solid_centre), mm.mass, np.asarray(mm.centre),
                              mm.shell_volume, mm.interior_volume, np.asarray(mm.interior_centre))

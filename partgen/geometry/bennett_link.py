@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import manifold3d as m3d
 import numpy as np
 
-__all__ = ["skew_link", "distal_axis", "Boss", "Bar", "Cup", "link_solid", "link_interior", "capsules", "cylinder_capsules"]
+__all__ = ["skew_link", "distal_axis", "Boss", "Bar", "Cup", "link_solid", "capsules", "cylinder_capsules"]
 
 
 def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
@@ -130,27 +130,6 @@ def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segmen
         cut.append(_place(m3d.Manifold.cylinder(c.pocket_depth + 0.1, c.pocket_radius, -1.0, segments, False),
                           np.asarray(c.point, float), np.asarray(c.axis, float), start))
     return m3d.Manifold.batch_boolean(add, m3d.OpType.Add) - m3d.Manifold.batch_boolean(cut, m3d.OpType.Add)
-
-
-def link_interior(bosses: list[Boss], bars: list[Bar], cups: list[Cup], shell: float, segments: int = 48
-                  ) -> m3d.Manifold:
-    """The infilled core of ``link_solid``: every feature shrunk by ``shell`` mm (the larger of the
-    wall and skin thickness) and every bore and pocket grown by it. Each feature's own erosion is
-    exact; where features join, the core is a little smaller than the true erosion (the shell is
-    counted a little heavier)."""
-    sb = [Boss(b.point, b.axis, b.offset, b.radius - shell, b.length - 2 * shell, b.bore_radius + shell)
-          for b in bosses if b.radius - shell > b.bore_radius + shell and b.length > 2 * shell]
-    sr = [Bar(b.p0, b.p1, b.radius - shell) for b in bars if b.radius > shell]
-    sc = []
-    for c in cups:
-        d = np.asarray(c.axis, float) / np.linalg.norm(c.axis)
-        sc.append(Cup(tuple(np.asarray(c.point) + shell * d), c.axis, c.outer_radius - shell, c.height - 2 * shell,
-                      c.pocket_radius + shell, c.pocket_depth + shell))
-    core = link_solid(sb, sr, sc, segments)
-    # bores of every boss (also of bosses too thin for a core) cut through the core
-    cut = [_place(m3d.Manifold.cylinder(b.length + 0.2, b.bore_radius + shell, -1.0, segments, True),
-                  np.asarray(b.point, float), np.asarray(b.axis, float), b.offset) for b in bosses]
-    return core - m3d.Manifold.batch_boolean(cut, m3d.OpType.Add) if cut else core
 
 
 def cylinder_capsules(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, spokes: int = 4
