@@ -76,7 +76,7 @@ def main() -> None:
     tf = tm = 0.0
     rows = []
     for i in range(1, 13):
-        bosses, bars, cups = A._link_features(p, i, lay, bodies[i], kit.delta)
+        bosses, bars, cups = A.link_features(p, i, lay, bodies[i], kit.delta)
         solid = link_solid(bosses, bars, cups, p.segments)
         st = A.print_settings(p)
         t = time.perf_counter()

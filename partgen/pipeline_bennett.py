@@ -81,7 +81,8 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
     dump = lambda d: yaml.safe_dump(d, sort_keys=False, allow_unicode=True).encode()  # noqa: E731
     files = {"design.yaml": dump(data), "printer.yaml": dump(read_yaml(raw.printer_path))}
     design = {"name": p.name, "kind": "bennett_butterfly", "config": raw.path.name,
-              "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha), "beta_deg": math.degrees(p.bb.beta),
+              "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha),
+              "beta_deg": math.degrees(p.bb.beta),
               "scales": [1.0, p.bb.s2, p.bb.s3, p.bb.s4], "home_angle_deg": math.degrees(p.home),
               "workspace_deg": [math.degrees(x) for x in p.workspace], "layout": layout_yaml(kit),
               "counterweights": {f"link{i:02d}": {"fill_g": kit.fill["fdm"][i], "fill": p.fill_name,
@@ -139,18 +140,21 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
         meshes.append((v @ T[:3, :3].T + T[:3, 3], fc, colour))
     kit_png = render(meshes, (640, 560), elev=30, azim=-60)
     top_png = render(meshes, (640, 560), elev=89, azim=-90)
-    rows = [[r["part"], "–" if r["layer"] is None else r["layer"], r.get("bought", "printed"),
-             "–" if r["solid_g"] is None else f"{r['solid_g']:.1f}", "–" if r["printed_g"] is None else f"{r['printed_g']:.1f}",
-             f"{r['fill_g']:.1f}" if r["fill_g"] else "", f"{r['pins_g']:.1f}" if r["pins_g"] else ""] for r in bill(kit)]
+    def g(x):
+        return "" if not x else f"{x:.1f}"
+    rows = [[r["part"], "–" if r["layer"] is None else r["layer"], r.get("bought", "printed"), g(r["solid_g"]),
+             g(r["printed_g"]), g(r["fill_g"]), g(r["pins_g"])] for r in bill(kit)]
     lay = kit.layout
+    shifts = {i: ", ".join(f"{j} {v:+g} mm" for j, v in sorted(lay.shift.items()) if v and i in lay.members(j))
+              for i in range(1, 13)}
     design = (f"<p>Bennett 1: a = {p.bb.a:g} mm, b = {p.bb.b:g} mm, α = {math.degrees(p.bb.alpha):g}°, β = "
-              f"{math.degrees(p.bb.beta):.2f}° (from sin β = (b/a) sin α); the other three Bennetts are translated copies "
-              f"scaled {p.bb.s2:g}, {p.bb.s3:g}, {p.bb.s4:g}. Home pose {math.degrees(p.home):g}° between links 1 and 4; "
-              f"the kit must move freely from {lo:g}° to {hi:g}° and turn freely about S. The four joints at S are four "
-              "revolutes on different axes through S (a spherical four-bar); see the README for why one pin cannot work.</p>"
+              f"{math.degrees(p.bb.beta):.2f}° (from sin β = (b/a) sin α); the other three Bennetts are translated "
+              f"copies scaled {p.bb.s2:g}, {p.bb.s3:g}, {p.bb.s4:g}. Home pose {math.degrees(p.home):g}° between "
+              f"links 1 and 4; the kit must move freely from {lo:g}° to {hi:g}° and turn freely about S. The four "
+              "joints at S are four revolutes on different axes through S (a spherical four-bar); see the README for "
+              "why one pin cannot work.</p>"
               + R.table(["link", "layer", "shift of its stacks"],
-                        [[f"link{i:02d}", lay.layer[i], ", ".join(f"{j} {v:+g} mm" for j, v in sorted(lay.shift.items())
-                                                                  if v and i in lay.members(j))] for i in range(1, 13)]))
+                        [[f"link{i:02d}", lay.layer[i], shifts[i]] for i in range(1, 13)]))
     balance = (f'<p class="{"ok" if result.ok else "fail"}">Worst distance of the common centre of mass from S over a '
                f"{p.grid[0]} × {p.grid[1]} grid (q1 over a turn × the workspace): as printed {b['fdm']:.4f} mm; the "
                f"same kit with solid parts {b['solid']:.4f} mm; infill {100 * p.infill_error:g} points off "

@@ -46,7 +46,7 @@ def test_bores_lie_on_the_joint_axes(kit):
     for i in (1, 2, 7, 12):
         solid = _solid(kit, i)
         for j, (pt, ax) in kit.bodies[i].items():
-            off = kit.layout.offset(j, i, p.boss_length + p.axial_gap)
+            off = kit.layout.offset(j, i, p.pitch)
             def pin(r, direction=ax):
                 return _place(m3d.Manifold.cylinder(p.boss_length + 4, r, -1.0, 64, True), pt, direction, off)
             assert intersection(solid, np.eye(4), pin(bore - 0.05), np.eye(4))[0] == 0.0, (i, j)
@@ -91,12 +91,12 @@ def test_centre_of_mass_from_the_meshes_stays_at_S(kit):
                 moment += f_ * (T[:3, :3] @ kit.cups[i].pocket_centre + T[:3, 3])
         ours = A.com_deviation(kit, "solid", np.array([q1]), np.array([q4]), fill=kit.fill["fdm"])[0]
         assert np.linalg.norm(moment / total) == pytest.approx(ours, abs=1e-6)
-    q1, q4 = A._grid(p)
+    q1, q4 = A.grid(p)
     assert A.com_deviation(kit, "fdm", q1, q4).max() < 1e-3
 
 
 def test_fdm_model_at_full_infill_is_the_solid_model(kit):
-    q1, q4 = A._grid(kit.params)
+    q1, q4 = A.grid(kit.params)
     a = A.com_deviation(kit, "fdm", q1, q4, infill=1.0)
     b = A.com_deviation(kit, "solid", q1, q4, fill=kit.fill["fdm"])
     assert np.abs(a - b).max() < 1e-9

@@ -33,7 +33,7 @@ def _name(i: int) -> str:
 def balance_figures(kit: A.BennettKit) -> dict:
     """Worst distance (mm) of the common centre of mass from S over the grid, per model."""
     p = kit.params
-    q1, q4 = A._grid(p)
+    q1, q4 = A.grid(p)
     scale = dict(p.mass_scale)
     dev = {
         "solid": A.com_deviation(kit, "solid", q1, q4),
@@ -128,5 +128,6 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
         v, _ = mesh_arrays(pt.solid)
         ext = np.sort(v.max(axis=0) - v.min(axis=0))
         if np.any(ext > env):
-            res.add(Finding("fit", "fail", f"{pt.name} measures {ext.round(1)} mm: larger than the printer", (pt.name,)))
+            res.add(Finding("fit", "fail", f"{pt.name} measures {ext.round(1)} mm: larger than the printer",
+                            (pt.name,)))
     return res

@@ -49,7 +49,7 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
         workspace=(math.radians(k.workspace_deg[0]), math.radians(k.workspace_deg[1])),
         boss_radius=parts.boss_diameter_mm / 2, boss_length=parts.boss_length_mm, axial_gap=parts.axial_gap_mm,
         bar_radius=parts.bar_diameter_mm / 2, pin_radius=d.pin.diameter_mm / 2,
-        pin_clearance=d.pin.clearance_diametral_mm, pin_density=d.pin.density_g_cm3 / 1000.0,
+        pin_clearance=d.pin.clearance_diametral_mm, pin_density=d.pin.density_g_cm3 / 1000.0, pin_kind=d.pin.kind,
         offset_step=parts.offset_step_mm, offset_max=parts.offset_max_mm, cw_links=tuple(cw.links),
         cw_distance=tuple(cw.distance_mm), cw_outer_radius=cw.outer_diameter_mm / 2, cw_height=cw.height_mm,
         cw_wall=cw.wall_mm, fill_name=cw.fill.name, fill_density=cw.fill.density_g_cm3 / 1000.0,

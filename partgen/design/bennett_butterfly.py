@@ -241,7 +241,7 @@ class BennettParams:
     """Everything the kit needs (mm, rad, g/mm³); the assembly layer builds it."""
 
     name: str
-    bb: bbf.BennettButterfly
+    bb: BennettButterfly
     home: float  # angle between links 1 and 4 at S (rad)
     workspace: tuple[float, float]  # range of that angle the kit must move through freely (rad)
     boss_radius: float
@@ -251,6 +251,7 @@ class BennettParams:
     pin_radius: float
     pin_clearance: float  # diametral
     pin_density: float
+    pin_kind: str
     offset_step: float
     offset_max: float
     cw_links: tuple[int, ...]
@@ -274,3 +275,12 @@ class BennettParams:
     mass_scale: tuple = ()  # ((link, factor), ...): what-if heavier links, counterweights not re-sized
     printer: object = None
     segments: int = 40
+
+    @property
+    def pitch(self) -> float:
+        """mm between the layers: a boss and the axial gap."""
+        return self.boss_length + self.axial_gap
+
+    @property
+    def bore_radius(self) -> float:
+        return self.pin_radius + self.pin_clearance / 2

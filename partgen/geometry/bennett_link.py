@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import manifold3d as m3d
 import numpy as np
 
-__all__ = ["skew_link", "distal_axis", "Boss", "Bar", "Cup", "link_solid", "capsules", "cylinder_capsules"]
+__all__ = ["skew_link", "distal_axis", "Boss", "Bar", "Cup", "link_solid", "capsules", "cylinder_capsules", "pin_solid"]
 
 
 def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
@@ -171,3 +171,8 @@ def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = ()) -> tuple
         radii += list(r)
         owner += [len(bosses) + len(bars) + n] * len(r)
     return np.asarray(ends, float).reshape(-1, 2, 3), np.asarray(radii, float), owner
+
+
+def pin_solid(length: float, radius: float, segments: int = 48) -> m3d.Manifold:
+    """A round pin along z, centred on the origin (a bought dowel, modelled for the assembly)."""
+    return m3d.Manifold.cylinder(length, radius, -1.0, segments, True)
