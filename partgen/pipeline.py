@@ -156,7 +156,7 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
         return check_wrist_design(raw, progress)
     if raw.design.__class__.__name__ == "BennettDesign":
         from .pipeline_bennett import check_bennett_design
-        return check_bennett_design(raw)
+        return check_bennett_design(raw, kit_dir)
     loaded = load(target / "design.yaml" if kit_dir else target)
     try:
         kit = build_kit(loaded.mechanism, loaded.params)

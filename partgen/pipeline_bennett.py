@@ -95,12 +95,23 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
     return loaded, kit, man, dest
 
 
-def check_bennett_design(raw: LoadedDesign, progress=None):
-    """Balance over the input grid, interference over the workspace, stacks, pockets, printer fit."""
+def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
+    """Balance over the input grid, interference over the workspace, stacks, pockets, printer fit;
+    for a kit folder also that its STLs are what its design.yaml builds."""
     from .checks.bennett import check_bennett
+    from .checks.findings import Finding
+    from .export.kit import printed
 
     loaded, kit = _kit(raw)
-    return loaded, kit, check_bennett(kit), None
+    result = check_bennett(kit)
+    if kit_dir is not None:
+        stale = [p.name for p in kit.parts if p.printed and (not (kit_dir / f"{p.name}.stl").is_file()
+                                                           or (kit_dir / f"{p.name}.stl").read_bytes() != printed(p).stl)]
+        if stale:
+            result.add(Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its "
+                               f"design.yaml builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
+                               tuple(stale)))
+    return loaded, kit, result, None
 
 
 def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:

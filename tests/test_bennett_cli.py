@@ -46,6 +46,18 @@ def test_check_a_kit_folder_holds(kit_dir, capsys):
     assert out["ok"] and out["figures"]["balance_mm"]["fdm"] < 1e-3
 
 
+def test_a_tampered_kit_folder_fails(kit_dir, tmp_path, capsys):
+    import shutil
+    copy = tmp_path / "kit"
+    shutil.copytree(kit_dir, copy)
+    mesh = trimesh.load(copy / "link03.stl")
+    mesh.apply_scale(1.01)
+    mesh.export(copy / "link03.stl")
+    assert main(["check", str(copy), "--json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert [f["parts"] for f in out["findings"] if f["check"] == "kit"] == [["link03"]]
+
+
 def test_a_heavier_link_fails_the_check(capsys):
     assert main(["check", str(ROOT / "tests" / "designs" / "bennett_heavy_link.yaml"), "--json"]) == 1
     out = json.loads(capsys.readouterr().out)

@@ -144,16 +144,26 @@ def com_deviation(kit: BennettKit, model: str, q1, q4, fill: dict[int, float] | 
 
 
 def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) -> BennettKit:
-    """Lay out the stacks, build the links and base, weigh them (solid and FDM) and size the counterweights."""
+    """Lay out the stacks (``lay``, the config's fixed layout, or a search), build the links and the
+    base, weigh them (solid and FDM) and size the counterweights.
+
+    A searched layout is searched with the pockets at their nominal points, the kit sized, the layout
+    refined with the pockets where the sizing put them, and the kit built again from that layout —
+    by the very path a fixed layout takes, so the kit folder's design.yaml rebuilds it byte for byte."""
     say = progress or (lambda s: None)
-    bodies = bbf.body_joints(p.bb)
-    figures = {}
     if lay is None and p.fixed_layout is not None:
         lay = Layout({BASE: 0, **p.fixed_layout[0]}, dict(p.fixed_layout[1]))
-        figures["layout_source"] = "fixed"
-    if lay is None:
-        lay, bodies, angles, step, clear = search_layout(p, say)
-        figures.update({"layout_source": "auto", "search_clearance_mm": clear})
+    if lay is not None:
+        return _build(p, lay, say, {"layout_source": "given"})
+    lay, bodies, angles, _, _ = search_layout(p, say)
+    first = _build(p, lay, say, {})
+    lay, clear = choose_offsets(p, coarse_samples(angles), bodies, say, p.layers, rounds=2, start=lay,
+                                delta=first.delta)
+    return _build(p, lay, say, {"layout_source": "auto", "search_clearance_mm": clear})
+
+
+def _build(p: BennettParams, lay: Layout, say, figures: dict) -> BennettKit:
+    bodies = bbf.body_joints(p.bb)
     q1g, q4g = grid(p)
     P = bbf.pose(p.bb, q1g, q4g)
     solids, masses, cups = {}, {}, {}
@@ -168,11 +178,11 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
         if cw:
             cups[i] = cw[0]
 
-    def size(delta: dict, rounds: int, label: str) -> tuple[dict, list[float]]:
+    def size(delta: dict, rounds: int) -> tuple[dict, list[float]]:
         """Solve for the fills and the pockets' offsets, rebuild the cup links, repeat."""
         moves = []
         for rnd in range(rounds):
-            say(f"counterweights, {label}round {rnd + 1}")
+            say(f"counterweights, round {rnd + 1}")
             m, c = _combine({i: (lm.fdm_mass, lm.fdm_centre) for i, lm in masses.items()}, pins)
             nominal = [(i, cw_nominal(p, i, bodies[i], lay)) for i in p.cw_links]
             _, dl, _ = bbf.solve_counterweights(P, m, c, nominal)
@@ -187,17 +197,7 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     for i in range(1, 13):
         say(f"link {i}")
         make(i, {})
-    delta, history = size({i: np.zeros(3) for i in p.cw_links}, 4, "")
-    if figures.get("layout_source") == "auto":
-        # the pockets moved: refine the layout with them where they are, then size the weights again
-        angles, _ = shape_samples(p, *p.workspace, point_speed(p, *p.workspace))
-        lay, clear = choose_offsets(p, coarse_samples(angles), bodies, say, p.layers, rounds=2, start=lay, delta=delta)
-        figures["search_clearance_mm"] = clear
-        pins = _pin_masses(p, lay, bodies)
-        for i in range(1, 13):
-            make(i, delta)
-        delta, more = size(delta, 3, "refined ")
-        history += more
+    delta, history = size({i: np.zeros(3) for i in p.cw_links}, 4)
     m, c = _combine({i: (lm.fdm_mass, lm.fdm_centre) for i, lm in masses.items()}, pins)
     at = [(i, cups[i].pocket_centre) for i in p.cw_links]
     fdm, _ = bbf.solve_point_masses(P, m, c, at)
