@@ -134,7 +134,7 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
     lo, hi = (math.degrees(x) for x in p.workspace)
     poses = poses_figure(p.bb, [lo, math.degrees(p.home), hi])
     ang = np.linspace(lo, hi, p.grid[1])
-    labels = {"fdm": "as printed (FDM model), weights sized for it", "solid": "the same kit, parts solid",
+    labels = {"fdm": "as printed (FDM model), weights sized for it", "solid": "solid model (fills re-sized for it)",
               "fdm_infill_error": f"infill {100 * p.infill:g} → {100 * (p.infill + p.infill_error):g} %",
               "solid_weights_printed_fdm": "weights sized for solid parts, printed FDM",
               "what_if_mass_scale": f"what-if heavier links {dict(p.mass_scale)}"}
@@ -168,7 +168,7 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
                         [[f"link{i:02d}", lay.layer[i], shifts[i]] for i in range(1, 13)]))
     balance = (f'<p class="{"ok" if result.ok else "fail"}">Worst distance of the common centre of mass from S over a '
                f"{p.grid[0]} × {p.grid[1]} grid (q1 over a turn × the workspace): as printed {b['fdm']:.4f} mm; the "
-               f"same kit with solid parts {b['solid']:.4f} mm; infill {100 * p.infill_error:g} points off "
+               f"solid model, fills re-sized for it {b['solid']:.4f} mm; infill {100 * p.infill_error:g} points off "
                f"{b['fdm_infill_error']:.3f} mm; counterweights sized for solid parts {b['solid_weights_printed_fdm']:.3f} mm"
                + (f"; what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else "")
                + f" (tolerance {p.tolerance:g} mm).</p>" + R.img(com, "centre of mass trace"))

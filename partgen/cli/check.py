@@ -59,7 +59,7 @@ def _bennett_table(loaded, result, seconds: float) -> str:
     b = f["balance_mm"]
     lines = [f"{loaded.params.name}: balance over a {b['grid'][0]} × {b['grid'][1]} grid of (q1, angle between links 1 "
              f"and 4); interference over {f['interference_samples']} shape angles, step {f['step_deg']:.2f}°",
-             f"  centre of mass from S: as printed {b['fdm']:.4f} mm, solid {b['solid']:.4f} mm, "
+             f"  centre of mass from S: as printed {b['fdm']:.4f} mm, solid model (fills re-sized) {b['solid']:.4f} mm, "
              f"infill off by {100 * loaded.params.infill_error:g} points {b['fdm_infill_error']:.3f} mm, "
              f"weights sized for solid parts {b['solid_weights_printed_fdm']:.3f} mm"
              + (f", what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else ""),

@@ -34,7 +34,7 @@ from .balanced import Butterfly
 from .bennett import check_bennett, joint_angles
 
 __all__ = ["BennettButterfly", "BennettParams", "JOINTS", "GROUP", "REFERENCE", "Pose", "pose", "link_frames", "body_joints",
-           "centre_of_mass", "solve_point_masses", "solve_counterweights", "shape_angle"]
+           "centre_of_mass", "mass_moment", "solve_point_masses", "solve_counterweights", "shape_angle"]
 
 # joint: (links it connects, the Bennett-1 joint its axis is parallel to, the point it sits at)
 JOINTS: dict[str, tuple[tuple[int, int], str, str]] = {
@@ -168,15 +168,20 @@ def body_joints(bb: BennettButterfly) -> dict[int, dict[str, tuple[np.ndarray, n
     return out
 
 
-def centre_of_mass(p: Pose, masses: dict[int, float], body_coms: dict[int, np.ndarray]) -> np.ndarray:
-    """(n, 3) common centre of mass (mm) of links with masses (g) and centres (3,) in their body frames."""
-    frames = link_frames(p)
-    total = sum(masses.values())
-    acc = np.zeros((len(p.q1), 3))
+def mass_moment(frames: dict[int, np.ndarray], masses: dict[int, float], body_coms: dict[int, np.ndarray]
+                ) -> np.ndarray:
+    """(n, 3) Σ mᵢ·(world centre of link i) about S, g·mm, for links with masses (g) and centres (3,)
+    in their body frames (``link_frames``)."""
+    acc = 0.0
     for i, m in masses.items():
         T = frames[i]
-        acc += m * (T[:, :3, :3] @ np.asarray(body_coms[i], float) + T[:, :3, 3])
-    return acc / total
+        acc = acc + m * (T[:, :3, :3] @ np.asarray(body_coms[i], float) + T[:, :3, 3])
+    return acc
+
+
+def centre_of_mass(p: Pose, masses: dict[int, float], body_coms: dict[int, np.ndarray]) -> np.ndarray:
+    """(n, 3) common centre of mass (mm) of links with masses (g) and centres (3,) in their body frames."""
+    return mass_moment(link_frames(p), masses, body_coms) / sum(masses.values())
 
 
 def solve_point_masses(p: Pose, masses: dict[int, float], body_coms: dict[int, np.ndarray],
@@ -185,10 +190,7 @@ def solve_point_masses(p: Pose, masses: dict[int, float], body_coms: dict[int, n
     of mass closest to S over the poses (least squares on the mass moment), and the worst remaining
     moment per unit total mass (mm). Raises DesignError if a mass comes out negative."""
     frames = link_frames(p)
-    rhs = np.zeros((len(p.q1), 3))
-    for i, m in masses.items():
-        T = frames[i]
-        rhs -= m * (T[:, :3, :3] @ np.asarray(body_coms[i], float) + T[:, :3, 3])
+    rhs = -mass_moment(frames, masses, body_coms)
     cols = [(frames[i][:, :3, :3] @ np.asarray(pt, float) + frames[i][:, :3, 3]).ravel() for i, pt in free]
     A = np.column_stack(cols)
     x, *_ = np.linalg.lstsq(A, rhs.ravel(), rcond=None)
@@ -207,16 +209,14 @@ def solve_counterweights(p: Pose, masses: dict[int, float], body_coms: dict[int,
     """Point masses on links ``at`` [(link, nominal body point (3,))], each free to move off its
     nominal point by δ (3,), that put the common centre of mass at S over the poses.
 
-    The moment is linear in each mass m and in h = m·δ, so this is a linear problem; the balance
-    has fewer independent conditions than unknowns, and of all exact solutions the one with the
-    smallest Σ|h|² + Σ(m/mass_weight)²... is taken by a weighted minimum-norm least squares (m
-    weighted ``mass_weight`` mm, so masses are cheap and offsets dear). Returns masses (k,) g,
-    offsets δ (k, 3) mm in the body frames, and the worst remaining moment per unit mass (mm)."""
+    The moment is linear in each mass m and in h = m·δ, so this is a linear problem. The balance has
+    fewer independent conditions than unknowns; of its exact solutions the minimum-norm one in
+    (m/mass_weight, h) is taken, so offsets are kept small (in the Bennett butterfly the masses come
+    out the same whatever the weight: the conditions fix them, the offsets take up the rest).
+    Returns masses (k,) g, offsets δ (k, 3) mm in the body frames, and the worst remaining moment
+    per unit mass (mm)."""
     frames = link_frames(p)
-    rhs = np.zeros((len(p.q1), 3))
-    for i, m in masses.items():
-        T = frames[i]
-        rhs -= m * (T[:, :3, :3] @ np.asarray(body_coms[i], float) + T[:, :3, 3])
+    rhs = -mass_moment(frames, masses, body_coms)
     cols = []
     for i, p0 in at:
         R, t = frames[i][:, :3, :3], frames[i][:, :3, 3]
