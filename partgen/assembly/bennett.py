@@ -89,7 +89,8 @@ def _axis_frame(origin: np.ndarray, axis: np.ndarray) -> np.ndarray:
 
 
 def _pin_masses(p: BennettParams, lay: Layout, bodies: dict) -> dict[int, list[tuple[float, np.ndarray]]]:
-    """Each pin is pressed into the bottom member of its stack and turns with it: link -> [(g, body point)]."""
+    """Each pin's mass, counted with the bottom member of its stack: its centre lies on the joint axis,
+    which every member shares, so this is exact however the pin turns. link -> [(g, body point)]."""
     out: dict[int, list] = {i: [] for i in range(0, 13)}
     for j in bbf.JOINTS:
         lo, hi = pin_span(p, lay, j)
