@@ -19,15 +19,15 @@ from ..design.bennett_butterfly import BennettParams
 from ..geometry.bennett_link import Cup, link_solid, pin_solid
 from ..geometry.mass import printed_mass
 from ..geometry.parts import Part
-from .bennett_layout import (Sweep, choose_offsets, coarse_samples, link_capsules, point_speed, search_layout,
-                             shape_samples, sweep_clearance)
+from .bennett_layout import (Sweep, choose_offsets, coarse_samples, link_capsules, part_reach, point_speed,
+                             search_layout, shape_samples, sweep_clearance)
 from .bennett_parts import (BASE, Layout, base_features, cw_nominal, default_layout, home_inputs, link_features,
                             pin_span, print_settings)
 
 __all__ = ["BennettKit", "LinkMass", "build_bennett", "com_deviation", "grid",
            # the layout and the parts, for the checks and the tests
            "BASE", "Layout", "Sweep", "choose_offsets", "coarse_samples", "default_layout", "home_inputs",
-           "link_capsules", "link_features", "point_speed", "shape_samples", "sweep_clearance"]
+           "link_capsules", "link_features", "part_reach", "point_speed", "shape_samples", "sweep_clearance"]
 
 
 @dataclass(frozen=True)
@@ -179,8 +179,9 @@ def _build(p: BennettParams, lay: Layout, say, figures: dict) -> BennettKit:
         if cw:
             cups[i] = cw[0]
 
-    def size(delta: dict, rounds: int) -> tuple[dict, list[float]]:
-        """Solve for the fills and the pockets' offsets, rebuild the cup links, repeat."""
+    def size(delta: dict, rounds: int, settled: float = 1e-3) -> tuple[dict, list[float]]:
+        """Solve for the fills and the pockets' offsets, rebuild the cup links, repeat until no
+        pocket moves more than ``settled`` mm (or ``rounds`` rounds)."""
         moves = []
         for rnd in range(rounds):
             say(f"counterweights, round {rnd + 1}")
@@ -192,13 +193,15 @@ def _build(p: BennettParams, lay: Layout, say, figures: dict) -> BennettKit:
             delta = new
             for i in p.cw_links:
                 make(i, delta)
+            if moves[-1] < settled:
+                break
         return delta, moves
 
     pins = _pin_masses(p, lay, bodies)
     for i in range(1, 13):
         say(f"link {i}")
         make(i, {})
-    delta, history = size({i: np.zeros(3) for i in p.cw_links}, 4)
+    delta, history = size({i: np.zeros(3) for i in p.cw_links}, 12)
     m, c = _combine({i: (lm.fdm_mass, lm.fdm_centre) for i, lm in masses.items()}, pins)
     at = [(i, cups[i].pocket_centre) for i in p.cw_links]
     fdm, _ = bbf.solve_point_masses(P, m, c, at)

@@ -21,7 +21,7 @@ from ..geometry.capsules import capsule_clearance
 from .bennett_parts import BASE, Layout, base_features, default_layout, home_inputs, link_features, pin_span
 
 __all__ = ["Sweep", "link_capsules", "part_capsules", "capsule_key", "shape_samples", "coarse_samples", "point_speed",
-           "sweep_clearance", "choose_offsets", "search_layout"]
+           "sweep_clearance", "choose_offsets", "search_layout", "part_reach"]
 
 
 def link_capsules(p: BennettParams, lay: Layout, bodies: dict, delta: dict | None = None
@@ -106,8 +106,9 @@ def _shared(a: int, b: int) -> set[str]:
 
 
 class Sweep:
-    """Capsule clearances of every pair of parts over fixed shape angles, updated incrementally as
-    the layout changes (the frames are computed once)."""
+    """Capsule clearances of every pair of parts over fixed shape angles. The frames are computed
+    once; each part's capsules and each pair's result are remembered by the parts' states, so a
+    trial layout that moves one link recomputes only the pairs that link is in."""
 
     def __init__(self, p: BennettParams, angles: np.ndarray, bodies: dict, delta: dict | None = None):
         self.p, self.bodies, self.delta = p, bodies, delta
@@ -131,46 +132,42 @@ class Sweep:
             out[k] = hit
         return out
 
-    def pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
-        ka, kb = caps[a][3], caps[b][3]
-        if (ka, kb) in self.pairs:
-            return self.pairs[(ka, kb)]
-        self.pairs[(ka, kb)] = r = self._pair(caps, a, b)
-        return r
-
-    def _pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
-        shared = _shared(a, b)
+    def per_angle(self, caps, a: int, b: int) -> np.ndarray | None:
+        """(n,) least clearance of parts a and b at each angle (mm); None if every feature pair is exempt."""
         key = (a, b, tuple(caps[a][2]), tuple(caps[b][2]))
         mask = self.masks.get(key)
         if mask is None:
+            shared = _shared(a, b)
             mask = np.array([[not _exempt(ta, tb, shared) for tb in caps[b][2]] for ta in caps[a][2]])
             self.masks[key] = mask
         if not mask.any():
             return None
         c = capsule_clearance(caps[a][0], caps[a][1], caps[b][0], caps[b][1])
-        c = np.where(mask[None], c, np.inf).min(axis=(1, 2))
-        k = int(np.argmin(c))
-        return float(c[k]), k
+        return np.where(mask[None], c, np.inf).min(axis=(1, 2))
+
+    def pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
+        """(least clearance mm, angle index) of parts a and b, remembered per pair of part states."""
+        ka, kb = caps[a][3], caps[b][3]
+        if (ka, kb) not in self.pairs:
+            c = self.per_angle(caps, a, b)
+            self.pairs[(ka, kb)] = None if c is None else (float(c.min()), int(np.argmin(c)))
+        return self.pairs[(ka, kb)]
 
     def profile(self, lay: Layout) -> np.ndarray:
         """(n,) least clearance over all pairs at each sampled angle (mm)."""
         caps = self.capsules(lay)
         out = np.full(self.n, np.inf)
         for a, b in itertools.combinations(range(13), 2):
-            key = (a, b, tuple(caps[a][2]), tuple(caps[b][2]))
-            if self.pair(caps, a, b) is None:
-                continue
-            c = capsule_clearance(caps[a][0], caps[a][1], caps[b][0], caps[b][1])
-            out = np.minimum(out, np.where(self.masks[key][None], c, np.inf).min(axis=(1, 2)))
+            c = self.per_angle(caps, a, b)
+            if c is not None:
+                out = np.minimum(out, c)
         return out
 
-    def all(self, lay: Layout, links: set[int] | None = None, caps=None, old: dict | None = None):
-        """Every pair's (clearance, angle index); with ``links`` and ``old``, only pairs touching them recomputed."""
-        caps = caps or self.capsules(lay)
-        out = dict(old or {})
+    def all(self, lay: Layout) -> dict[tuple[int, int], tuple[float, int]]:
+        """Every pair's (least clearance mm, angle index); pairs of unchanged parts come from memory."""
+        caps = self.capsules(lay)
+        out = {}
         for a, b in itertools.combinations(range(13), 2):
-            if links is not None and old is not None and a not in links and b not in links:
-                continue
             r = self.pair(caps, a, b)
             if r is not None:
                 out[(a, b)] = r
@@ -184,19 +181,36 @@ def sweep_clearance(p: BennettParams, lay: Layout, angles: np.ndarray, bodies: d
     return Sweep(p, angles, bodies or bbf.body_joints(p.bb)).all(lay)
 
 
-def point_speed(p: BennettParams, lo: float, hi: float, n: int = 361) -> float:
-    """The fastest joint point's speed, mm per rad of the shape angle, over [lo, hi] (bosses and bars
-    lie within the hull of the joint points plus the offsets, which move with them)."""
+def point_speed(p: BennettParams, lo: float, hi: float, reach: dict[int, float] | None = None, n: int = 361) -> float:
+    """A bound on how fast any point of any part moves, mm per rad of the shape angle, over [lo, hi]:
+    for each link the speed of its reference joint plus its angular speed times ``reach`` (link ->
+    mm, the farthest point of the part from that joint). Without ``reach``, a generous guess from the
+    config (for the search, before the parts exist); the check passes the parts' own."""
     t = np.linspace(lo, hi, n)
-    q1, q4 = home_inputs(t)
-    pts = bbf.pose(p.bb, q1, q4).points
-    reach = p.offset_max + p.boss_length + p.cw_height
-    v = max(float((np.linalg.norm(np.diff(x, axis=0), axis=1) / np.diff(t)).max()) for x in pts.values())
-    # rotation of a link moves a point `reach` off its joints at up to (joint speed / link length) rad per rad
-    omega = max(float(np.abs(np.diff(np.unwrap(np.arctan2(pts["D2"][:, 1] - pts["B2"][:, 1],
-                                                             pts["D2"][:, 0] - pts["B2"][:, 0])))).max()
-                      / (t[1] - t[0])), 1.0)
-    return v + omega * reach
+    P = bbf.pose(p.bb, *home_inputs(t))
+    # angular speed of each of the four link rotations: the angle of R(t)ᵀR(t + dt) over dt
+    rel = np.einsum("gnji,gnjk->gnik", P.rot[:, :-1], P.rot[:, 1:])
+    cos = np.clip((np.trace(rel, axis1=2, axis2=3) - 1) / 2, -1.0, 1.0)
+    omega = (np.arccos(cos) / np.diff(t)).max(axis=1)
+    if reach is None:
+        span = max(float(np.linalg.norm(pt)) for body in bbf.body_joints(p.bb).values() for pt, _ in body.values())
+        guess = span + p.offset_max + p.layers * p.pitch + p.boss_radius + abs(max(p.cw_distance, key=abs)) + p.cw_height
+        reach = {i: guess for i in bbf.GROUP}
+    out = 0.0
+    for i, g in bbf.GROUP.items():
+        x = P.points[bbf.REFERENCE[i]]
+        v = float((np.linalg.norm(np.diff(x, axis=0), axis=1) / np.diff(t)).max())
+        out = max(out, v + float(omega[g - 1]) * reach[i])
+    return out
+
+
+def part_reach(p: BennettParams, lay: Layout, bodies: dict, delta: dict | None = None) -> dict[int, float]:
+    """link -> the farthest point of its capsules from its reference joint (the body origin), mm."""
+    out = {}
+    for i in bbf.GROUP:
+        ends, radii, _ = part_capsules(p, lay, bodies, i, delta)
+        out[i] = float((np.linalg.norm(ends, axis=2) + radii[:, None]).max())
+    return out
 
 
 def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=None, layers: int = 6,
@@ -232,13 +246,11 @@ def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=
                 trial = Layout({**lay.layer, what: val}, lay.shift)
                 if not ok(trial):
                     continue
-                touched = {what}
             else:
                 if lay.shift.get(what, 0.0) == val:
                     continue
                 trial = Layout(lay.layer, {**lay.shift, what: val})
-                touched = set(trial.members(what))
-            r = sweep.all(trial, touched, old=res)
+            r = sweep.all(trial)
             sc = score(r, trial)
             if sc > best:
                 best, lay, res, improved = sc, trial, r, True
@@ -252,8 +264,8 @@ def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=
 def search_layout(p: BennettParams, progress=None) -> tuple[Layout, dict, np.ndarray, float, float]:
     """The automatic stack layout over the workspace: (layout, bodies, angles, step rad, clearance mm)."""
     bodies = bbf.body_joints(p.bb)
-    speed = point_speed(p, *p.workspace)
-    # the search samples more coarsely (4× the step); the check sweeps at the full step
+    # the step as the check would choose it for the starting layout; the search sweeps every fourth
+    speed = point_speed(p, *p.workspace, part_reach(p, default_layout(), bodies))
     angles, step = shape_samples(p, *p.workspace, speed)
     lay, clear = choose_offsets(p, coarse_samples(angles), bodies, progress, p.layers)
     return lay, bodies, angles, step, clear

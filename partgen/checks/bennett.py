@@ -5,10 +5,11 @@ every part fits the printer.
 
 Interference sampling: link–link clearance depends only on the shape angle (q1 turns the linkage
 rigidly about S's axis and the base is round about it). The step is chosen so that no point of any
-part moves more than a bar's radius between samples (``assembly.bennett.shape_samples``): two
-parts then close in on each other by at most a bar's diameter — the thinnest feature — between
-samples, so one cannot pass through another unseen, and a sampled clearance c guarantees at least
-c − (bar diameter) in between.
+part moves more than a bar's radius between samples (``assembly.bennett_layout.shape_samples``; the
+speed bound is each link's reference-joint speed plus its angular speed times its reach, from the
+parts themselves): two parts then close in on each other by at most a bar's diameter — the
+thinnest feature — between samples, so one cannot pass through another unseen, and a sampled
+clearance c guarantees at least c − (bar diameter) in between.
 """
 
 from __future__ import annotations
@@ -72,7 +73,7 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
                         f"{_name(i)}: {f:.2f} g of {p.fill_name} needs {need / 1000:.2f} cm³ of its "
                         f"{have / 1000:.2f} cm³ pocket", (_name(i),), value=need / have, unit="fraction"))
     say("interference")
-    speed = A.point_speed(p, *p.workspace)
+    speed = A.point_speed(p, *p.workspace, A.part_reach(p, kit.layout, kit.bodies, kit.delta))
     angles, step = A.shape_samples(p, *p.workspace, speed)
     sweep = A.Sweep(p, angles, kit.bodies, kit.delta)
     clear = sweep.all(kit.layout)
