@@ -101,16 +101,16 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
     else:
         res.figures["free_range_deg"] = [float("nan"), float("nan")]
     say("stacks")
-    # parts sharing a joint: their features there are exempt from the capsule sweep; measure exactly
+    # parts sharing a joint: their features there are exempt from the capsule sweep; measure them
+    # exactly (manifold intersection) at every sample
     solids = {int(pt.name[4:]): pt.solid for pt in kit.parts if pt.name.startswith("link")}
     solids[A.BASE] = next(pt.solid for pt in kit.parts if pt.name == "base")
     frames = sweep.frames
-    exact_at = np.unique(np.linspace(0, len(angles) - 1, min(len(angles), 9)).round().astype(int))
     worst_v = 0.0
     for j, (links, _, _) in bbf.JOINTS.items():
         members = kit.layout.members(j)
         for a, b in ((x, y) for x in members for y in members if x < y):
-            for k in exact_at:
+            for k in range(len(angles)):
                 Ta = np.eye(4) if a == A.BASE else frames[a][k]
                 Tb = np.eye(4) if b == A.BASE else frames[b][k]
                 v = intersection(solids[a], Ta, solids[b], Tb)[0]
