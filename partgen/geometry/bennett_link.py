@@ -23,10 +23,6 @@ def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
     return np.array([a, 0.0, 0.0]), np.array([0.0, -math.sin(alpha), math.cos(alpha)])
 
 
-def _boss(radius: float, length: float, bore: float, segments: int) -> m3d.Manifold:
-    return m3d.Manifold.cylinder(length, radius, -1.0, segments, True)
-
-
 def _place(solid: m3d.Manifold, point: np.ndarray, direction: np.ndarray, offset: float) -> m3d.Manifold:
     """Move a z-aligned solid so its axis is the line (point, direction), centred ``offset`` along it."""
     d = direction / np.linalg.norm(direction)
@@ -45,21 +41,13 @@ def _place(solid: m3d.Manifold, point: np.ndarray, direction: np.ndarray, offset
 
 def skew_link(a: float, alpha: float, boss_r: float, boss_len: float, bore_r: float, bar_r: float,
               offsets: tuple[float, float], segments: int = 48) -> m3d.Manifold:
-    """A link: bosses (radius boss_r, length boss_len, bore bore_r through) on its proximal axis at
-    offsets[0] and on its distal axis at offsets[1], joined by a round bar (radius bar_r) between
-    the boss centres."""
+    """A two-joint link of one Bennett loop: bosses (radius boss_r, length boss_len, bore bore_r
+    through) on its proximal axis at offsets[0] and on its distal axis at offsets[1], joined by a
+    round bar (radius bar_r) between the boss centres."""
     p1, d1 = distal_axis(a, alpha)
-    b0 = _place(_boss(boss_r, boss_len, bore_r, segments), np.zeros(3), np.array([0.0, 0.0, 1.0]), offsets[0])
-    b1 = _place(_boss(boss_r, boss_len, bore_r, segments), p1, d1, offsets[1])
-    c0 = np.array([0.0, 0.0, offsets[0]])
-    c1 = p1 + offsets[1] * d1 / np.linalg.norm(d1)
-    ball = m3d.Manifold.sphere(bar_r, segments)
-    bar = m3d.Manifold.batch_hull([ball.translate(tuple(c0)), ball.translate(tuple(c1))])
-    long = boss_len * 4
-    bores = [_place(m3d.Manifold.cylinder(long, bore_r, -1.0, segments, True), np.zeros(3), np.array([0.0, 0.0, 1.0]),
-                    offsets[0]),
-             _place(m3d.Manifold.cylinder(long, bore_r, -1.0, segments, True), p1, d1, offsets[1])]
-    return m3d.Manifold.batch_boolean([b0, b1, bar], m3d.OpType.Add) - m3d.Manifold.batch_boolean(bores, m3d.OpType.Add)
+    bosses = [Boss((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), offsets[0], boss_r, boss_len, bore_r),
+              Boss(tuple(p1), tuple(d1), offsets[1], boss_r, boss_len, bore_r)]
+    return link_solid(bosses, [Bar(tuple(bosses[0].centre), tuple(bosses[1].centre), bar_r)], [], segments)
 
 
 @dataclass(frozen=True)
