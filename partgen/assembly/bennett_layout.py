@@ -147,11 +147,12 @@ class Sweep:
 
     def pair(self, caps, a: int, b: int) -> tuple[float, int] | None:
         """(least clearance mm, angle index) of parts a and b, remembered per pair of part states."""
-        ka, kb = caps[a][3], caps[b][3]
-        if (ka, kb) not in self.pairs:
-            c = self.per_angle(caps, a, b)
-            self.pairs[(ka, kb)] = None if c is None else (float(c.min()), int(np.argmin(c)))
-        return self.pairs[(ka, kb)]
+        key = (caps[a][3], caps[b][3])
+        if key in self.pairs:
+            return self.pairs[key]
+        c = self.per_angle(caps, a, b)
+        self.pairs[key] = r = None if c is None else (float(c.min()), int(np.argmin(c)))
+        return r
 
     def profile(self, lay: Layout) -> np.ndarray:
         """(n,) least clearance over all pairs at each sampled angle (mm)."""
