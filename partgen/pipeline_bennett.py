@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import html
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -17,14 +18,15 @@ from .errors import ConfigError, DesignError
 __all__ = ["BennettLoaded", "build_bennett_kit", "check_bennett_design", "bill", "report_bennett"]
 
 
+@dataclass(frozen=True)
 class BennettLoaded:
     """What the CLI needs to know of a loaded Bennett design (mirrors pipeline.Loaded)."""
 
-    mechanism = None
-    kind = "bennett_butterfly"
-
-    def __init__(self, raw: LoadedDesign, params):
-        self.path, self.printer_path, self.params = raw.path, raw.printer_path, params
+    path: Path
+    printer_path: Path
+    params: object
+    mechanism: None = None
+    kind: str = "bennett_butterfly"
 
 
 def _kit(raw: LoadedDesign, progress=None) -> tuple[BennettLoaded, A.BennettKit]:
@@ -33,7 +35,7 @@ def _kit(raw: LoadedDesign, progress=None) -> tuple[BennettLoaded, A.BennettKit]
         kit = A.build_bennett(p, progress)
     except DesignError as e:
         raise ConfigError(raw.path, e.key_path or "counterweights", e.problem) from None
-    return BennettLoaded(raw, p), kit
+    return BennettLoaded(raw.path, raw.printer_path, p), kit
 
 
 def layout_yaml(kit: A.BennettKit) -> dict:
