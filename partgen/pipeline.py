@@ -21,7 +21,7 @@ from .design.drivetrain import Finding
 from .design.mechanism import KitParams, Mechanism, synthesize
 from .errors import ConfigError, DesignError
 from .export.kit import write_kit
-from .geometry.solid import mesh_arrays
+from .geometry.measure import oversize
 
 __all__ = ["Loaded", "load", "build", "design_summary", "oversize_parts"]
 
@@ -60,16 +60,7 @@ def _size_key(kit: Kit, name: str) -> str:
 
 def oversize_parts(kit: Kit) -> list[tuple[str, str, np.ndarray]]:
     """Parts whose extents (any axis order) exceed the printer envelope: (name, key, extents)."""
-    env = np.sort(np.asarray(kit.params.printer.envelope, dtype=float))
-    out = []
-    for p in kit.parts:
-        if not p.printed:
-            continue
-        v, _ = mesh_arrays(p.solid)
-        ext = np.sort(v.max(axis=0) - v.min(axis=0))
-        if np.any(ext > env + 1e-9):
-            out.append((p.name, _size_key(kit, p.name), ext))
-    return out
+    return [(p.name, _size_key(kit, p.name), ext) for p, ext in oversize(kit.parts, kit.params.printer.envelope)]
 
 
 def design_summary(loaded: Loaded, kit: Kit) -> dict:
@@ -376,13 +367,9 @@ def build_wrist_kit(raw, dest=None, progress=None):
         kit = build_wrist(spec, progress)
     except (RangeError, ValueError) as e:
         raise ConfigError(raw.path, "wrist", str(e)) from None
-    env = np.sort(np.asarray(spec.printer.envelope, dtype=float))
-    for p in kit.parts:
-        v, _ = mesh_arrays(p.solid)
-        ext = np.sort(v.max(axis=0) - v.min(axis=0))
-        if np.any(ext > env + 1e-9):
-            raise ConfigError(raw.path, "wrist.centre_distance_mm", f"{p.name} measures {ext.round(1)} mm and does not "
-                              "fit the printer in any orientation")
+    for p, ext in oversize(kit.parts, spec.printer.envelope):
+        raise ConfigError(raw.path, "wrist.centre_distance_mm", f"{p.name} measures {ext.round(1)} mm and does not "
+                          "fit the printer in any orientation")
     loaded = Loaded(raw.path, None, kit.params, raw.printer_path)
     design = {"name": spec.name, "kind": "wrist", "config": raw.path.name, "nominal_ratio": spec.I,
               "centre_distance_mm": spec.A, "longitudinal_pitch_mm": spec.long_pitch, **kit.figures}

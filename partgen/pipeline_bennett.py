@@ -65,18 +65,13 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
     """Build the kit into ``dest`` (default out/<name>/): STLs, manifest (with the bill of masses and
     the chosen layout), GLB, and the design with its layout pinned."""
     from .export.kit import write_kit
-    from .geometry.solid import mesh_arrays
+    from .geometry.measure import oversize
 
     loaded, kit = _kit(raw, progress)
     p = kit.params
-    env = np.sort(np.asarray(p.printer.envelope, float))
-    for part in kit.parts:
-        if part.printed:
-            v, _ = mesh_arrays(part.solid)
-            ext = np.sort(v.max(axis=0) - v.min(axis=0))
-            if np.any(ext > env):
-                raise ConfigError(raw.path, "linkage.a_mm", f"{part.name} measures {ext.round(1)} mm and does not fit "
-                                  "the printer in any orientation")
+    for part, ext in oversize(kit.parts, p.printer.envelope, tol=0.0):
+        raise ConfigError(raw.path, "linkage.a_mm", f"{part.name} measures {ext.round(1)} mm and does not fit "
+                          "the printer in any orientation")
     data = read_yaml(raw.path)
     data["printer"] = "printer.yaml"
     data.setdefault("parts", {})["layout"] = layout_yaml(kit)

@@ -20,8 +20,7 @@ import numpy as np
 
 from ..assembly import bennett as A
 from ..design import bennett_butterfly as bbf
-from ..geometry.measure import intersection
-from ..geometry.solid import mesh_arrays
+from ..geometry.measure import intersection, oversize
 from .findings import Finding, Result
 
 __all__ = ["check_bennett", "balance_figures"]
@@ -122,13 +121,6 @@ def check_bennett(kit: A.BennettKit, progress=None) -> Result:
                     break
     res.figures["joint_stack_overlap_mm3"] = worst_v
     say("fit")
-    env = np.sort(np.asarray(p.printer.envelope, float))
-    for pt in kit.parts:
-        if not pt.printed:
-            continue
-        v, _ = mesh_arrays(pt.solid)
-        ext = np.sort(v.max(axis=0) - v.min(axis=0))
-        if np.any(ext > env):
-            res.add(Finding("fit", "fail", f"{pt.name} measures {ext.round(1)} mm: larger than the printer",
-                            (pt.name,)))
+    for pt, ext in oversize(kit.parts, p.printer.envelope, tol=0.0):
+        res.add(Finding("fit", "fail", f"{pt.name} measures {ext.round(1)} mm: larger than the printer", (pt.name,)))
     return res

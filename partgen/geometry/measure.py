@@ -14,7 +14,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from .solid import mesh_arrays
 
-__all__ = ["Slab", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh"]
+__all__ = ["Slab", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize"]
 
 
 @dataclass(frozen=True)
@@ -93,3 +93,18 @@ def from_mesh(vertices: np.ndarray, faces: np.ndarray) -> m3d.Manifold:
     if solid.status() != m3d.Error.NoError:
         raise ValueError(f"not a manifold solid: {solid.status()}")
     return solid
+
+
+def oversize(parts, envelope, tol: float = 1e-9) -> list[tuple[object, np.ndarray]]:
+    """Printed parts too big for the printer in any orientation: [(part, its extents sorted (3,) mm)].
+    ``parts``: objects with ``.solid`` and ``.printed``; ``envelope``: (3,) mm, any order."""
+    env = np.sort(np.asarray(envelope, dtype=float))
+    out = []
+    for p in parts:
+        if not p.printed:
+            continue
+        v, _ = mesh_arrays(p.solid)
+        ext = np.sort(v.max(axis=0) - v.min(axis=0))
+        if np.any(ext > env + tol):
+            out.append((p, ext))
+    return out
