@@ -62,12 +62,59 @@ def test_ten_percent_extra_mass_on_one_link_shows():
     assert worst > 0.1  # mm
 
 
-def test_the_transcribed_eq_9_to_11_do_not_balance_this_topology():
-    """Documented finding: masses that meet Eq 9–11 as transcribed in the spec do not keep the
-    centre of mass at S for the spec's topology and offset conventions; the conditions derived
-    from the mass moment do. (Fails if the transcription is ever corrected to agree.)"""
-    m, p = masses()
-    assert np.abs(paper_mass_equations(BF, m, p)).max() > 1.0
+PARALLEL = Butterfly(l1a=70.0, l2=90.0, l3=70.0, l4a=90.0, s2=0.8, s3=0.6, s4=0.7)  # a, b, a, b as in a Bennett
+
+
+def paper_masses(bf):
+    """Links 4, 7, 9 (counterweights 40 mm beyond their reference joints) given the masses that meet
+    the paper's Eq 9–11, the others random."""
+    rng = np.random.default_rng(0)
+    m = {i: float(rng.uniform(0.5, 2)) for i in range(1, 13)}
+    p = {i: float(rng.uniform(5, 40)) for i in range(1, 13)}
+    p.update({4: -40.0, 7: -40.0, 9: -40.0})
+    return solve_masses(bf, m, p, (4, 7, 9), paper_mass_equations), p
+
+
+def worst_com(bf, m, p):
+    return max(abs(centre_of_mass(pos, m, p)) for q in GRID if (pos := positions(bf, *q)) is not None)
+
+
+def _condition_rows(bf, conditions, p):
+    """(3, 12) matrix of three linear mass conditions (one column per link's unit mass)."""
+    return np.column_stack([conditions(bf, {k: float(k == i) for k in range(1, 13)}, p) for i in range(1, 13)])
+
+
+def test_eq_9_to_11_balance_when_opposite_sides_are_equal():
+    """The paper simplifies Eq 6–8 to Eq 9–11 assuming four-bar 1's opposite sides are equal (l1a = l3,
+    l2 = l4a, as in every Bennett linkage). Under it, masses meeting Eq 9–11 (positive here) keep
+    the centre of mass at S, and the paper's three equations span the same conditions as the three
+    derived from the mass moment."""
+    m, p = paper_masses(PARALLEL)
+    assert all(v > 0 for v in m.values())
+    assert np.abs(paper_mass_equations(PARALLEL, m, p)).max() < 1e-12 * sum(m.values()) * 100
+    assert np.abs(balance_coefficients(PARALLEL, m, p)).max() < 1e-12 * sum(m.values()) * 100
+    assert worst_com(PARALLEL, m, p) < 1e-12
+    paper, derived = _condition_rows(PARALLEL, paper_mass_equations, p), _condition_rows(PARALLEL, balance_coefficients, p)
+    assert np.linalg.matrix_rank(np.vstack([paper, derived]), tol=1e-9 * np.abs(derived).max()) == 3
+
+
+@pytest.mark.parametrize("dims", [(60.0, 80.0, 70.0, 90.0), (70.0, 80.0, 70.0, 90.0), (60.0, 90.0, 70.0, 90.0)])
+def test_eq_9_to_11_need_the_general_derivation_otherwise(dims):
+    """Without equal opposite sides (either pair unequal) Eq 9–11 are other conditions: masses that
+    meet them let the centre of mass wander (6.3 mm in the 60/80/70/90 four-bar of the other tests),
+    while the conditions derived from the mass moment hold it at S."""
+    bf = Butterfly(*dims, s2=0.8, s3=0.6, s4=0.7)
+    m, p = paper_masses(bf)
+    assert worst_com(bf, m, p) > 0.1
+    derived = _condition_rows(bf, balance_coefficients, p)
+    both = np.vstack([_condition_rows(bf, paper_mass_equations, p), derived])
+    assert np.linalg.matrix_rank(both, tol=1e-9 * np.abs(derived).max()) > 3
+    md = solve_masses(bf, m, p, (4, 7, 9))
+    assert worst_com(bf, md, p) < 1e-11
+    m6, p6 = masses()
+    if dims == (60.0, 80.0, 70.0, 90.0):  # the README's figure: the transcribed equations' masses in this four-bar
+        rng_free = solve_masses(BF, m6, p6, (3, 6, 9), paper_mass_equations)
+        assert worst_com(BF, rng_free, p6) == pytest.approx(6.29, abs=0.01)
 
 
 def test_inputs_drive_link_1_and_link_4():

@@ -11,7 +11,11 @@ links 3 and 2 — which the tests check rather than assume.
 Balance: every link's centre of mass is a fixed affine combination of its joints, so the total
 mass moment about S is a linear combination of the three vectors B2 − S, B3 − S and D2 − S, which
 move independently. The common centre of mass stays at S exactly when the three coefficients
-vanish: three linear conditions on the masses and their offsets (the paper's Eq 9–11).
+vanish: three linear conditions on the masses and their offsets (``balance_coefficients``). The
+paper's Eq 9–11 are these conditions simplified under its assumption that four-bar 1's opposite
+sides are equal (l1a = l3, l2 = l4a: a parallelogram in the planar form, and what every Bennett
+linkage has, a, b, a, b); for any other four-bar they are different conditions and do not
+balance it (``paper_mass_equations``; tests/test_balanced.py measures both cases).
 """
 
 from __future__ import annotations
@@ -124,18 +128,21 @@ def _link_length(i: int, L: dict[str, float]) -> float:
             9: L["l9"], 10: L["l10b"], 11: L["l11"], 12: L["l12"]}[i]
 
 
-def solve_masses(bf: Butterfly, masses: dict[int, float], offsets: dict[int, float], free: tuple[int, int, int]
-                 ) -> dict[int, float]:
-    """The masses of the three ``free`` links that balance the linkage (others as given)."""
+def solve_masses(bf: Butterfly, masses: dict[int, float], offsets: dict[int, float], free: tuple[int, int, int],
+                 conditions=None) -> dict[int, float]:
+    """The masses of the three ``free`` links that meet three linear ``conditions`` (others as
+    given): by default the balance (``balance_coefficients``); ``paper_mass_equations`` gives the
+    masses that meet the paper's Eq 9–11 instead."""
+    conditions = conditions or balance_coefficients
     base = dict(masses)
     for i in free:
         base[i] = 0.0
-    c0 = balance_coefficients(bf, base, offsets)
+    c0 = conditions(bf, base, offsets)
     cols = []
     for i in free:
         one = dict(base)
         one[i] = 1.0
-        cols.append(balance_coefficients(bf, one, offsets) - c0)
+        cols.append(conditions(bf, one, offsets) - c0)
     x = np.linalg.solve(np.column_stack(cols), -c0)
     out = dict(masses)
     out.update({i: float(v) for i, v in zip(free, x)})
@@ -143,7 +150,12 @@ def solve_masses(bf: Butterfly, masses: dict[int, float], offsets: dict[int, flo
 
 
 def paper_mass_equations(bf: Butterfly, m: dict[int, float], p: dict[int, float]) -> np.ndarray:
-    """Residuals of the paper's Eq 9–11 as transcribed in the spec (l11b read as l11)."""
+    """Residuals of the paper's Eq 9–11 as transcribed in the spec (l11b read as l11).
+
+    The paper derives them from its Eq 6–8 assuming four-bar 1's opposite sides equal (l1a = l3,
+    l2 = l4a): under that assumption they are combinations of the three ``balance_coefficients``
+    (the same conditions); without it they are not, and masses meeting them leave the centre of
+    mass wandering."""
     L = bf.lengths
     e9 = (-(m[1] * p[1] / L["l1a"] + m[2] + m[3]) * L["l2"] - m[4] * p[4] + m[5] * (1 - p[5] / L["l5"]) * L["l6"]
           + m[8] * p[8] + m[9] * (1 - p[9] / L["l9"]) * L["l8"] + m[12] * p[12])
