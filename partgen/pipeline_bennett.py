@@ -15,7 +15,8 @@ from .config.bennett import resolve_bennett
 from .config.loader import LoadedDesign, read_yaml
 from .errors import ConfigError, DesignError
 
-__all__ = ["BennettLoaded", "build_bennett_kit", "check_bennett_design", "bill", "report_bennett"]
+__all__ = ["BennettLoaded", "build_bennett_kit", "check_bennett_design", "bill", "bought", "report_bennett",
+           "bill_text", "check_text"]
 
 
 @dataclass(frozen=True)
@@ -44,26 +45,81 @@ def layout_yaml(kit: A.BennettKit) -> dict:
             "shifts_mm": {j: float(v) for j, v in sorted(kit.layout.shift.items()) if v}}
 
 
+def _r(x, nd=4):
+    return [round(float(v), nd) for v in x] if np.ndim(x) else round(float(x), nd)
+
+
 def bill(kit: A.BennettKit) -> list[dict]:
-    """Every part with its masses (g): solid, as printed (FDM), counterweight fill; pins and fill bought."""
-    p = kit.params
+    """Every printed part: its masses (g) solid and as printed (FDM) with their centres in its STL
+    frame, its pocket's fill and its pins (g), how it prints (support mm², bed contact mm², height)."""
     rows = []
-    for i, lm in kit.masses.items():
-        rows.append({"part": f"link{i:02d}", "layer": kit.layout.layer[i], "solid_g": lm.solid_mass,
-                     "printed_g": lm.fdm_mass, "fill_g": kit.fill["fdm"].get(i, 0.0),
-                     "pins_g": sum(m for m, _ in kit.pins[i])})
-    for part in kit.parts:
-        if part.role == "pin":
-            info = dict(part.info)
-            rows.append({"part": part.name, "layer": None, "solid_g": None, "printed_g": None, "fill_g": 0.0,
-                         "pins_g": p.pin_density * math.pi * p.pin_radius ** 2 * info["length_mm"],
-                         "bought": f"{p.pin_radius * 2:g} × {info['length_mm']:.1f} mm {info['material']}"})
+    parts = [(f"link{i:02d}", kit.masses[i], kit.layout.layer[i], kit.pins[i]) for i in range(1, 13)]
+    parts.append(("base", kit.base_mass, 0, kit.pins[A.BASE]))
+    for name, lm, layer, pins in parts:
+        pose = kit.printing[name]
+        T = np.linalg.inv(pose.body_from_print)
+        stl = lambda c: T[:3, :3] @ np.asarray(c, float) + T[:3, 3]  # noqa: E731
+        i = None if name == "base" else int(name[4:])
+        rows.append({"part": name, "layer": layer, "solid_g": lm.solid_mass, "solid_centre_mm": _r(stl(lm.solid_centre)),
+                     "printed_g": lm.fdm_mass, "printed_centre_mm": _r(stl(lm.fdm_centre)),
+                     "fill_g": kit.fills[i].mass if i in kit.fills else 0.0, "pins_g": sum(m for m, _ in pins),
+                     "support_mm2": round(pose.overhang_mm2, 1), "bed_contact_mm2": round(pose.contact_mm2, 1),
+                     "print_height_mm": round(pose.height_mm, 1)})
     return rows
 
 
+def bought(kit: A.BennettKit) -> list[dict]:
+    """What to buy: the pins by stock length, each pocket's slugs and the binder (quantity, stock size)."""
+    p = kit.params
+    pins: dict[float, list[str]] = {}
+    for part in kit.parts:
+        if part.role == "pin":
+            info = dict(part.info)
+            pins.setdefault(info["length_mm"], []).append(info["joint"])
+    rows = [{"item": f"{p.pin_kind} Ø{2 * p.pin_radius:g} × {L:g} mm", "quantity": len(js), "for": ", ".join(js),
+             "mass_g": len(js) * p.pin_density * math.pi * p.pin_radius ** 2 * L} for L, js in sorted(pins.items())]
+    slugs: dict[float, list[tuple[str, int]]] = {}
+    for i, f in sorted(kit.fills.items()):
+        slugs.setdefault(f.length, []).append((f"link{i:02d}", f.count))
+    for L, uses in sorted(slugs.items()):
+        f = _slug_fill(kit, L)
+        rows.append({"item": f"{p.slug_kind} Ø{f.diameter:g} × {L:g} mm", "quantity": sum(n for _, n in uses),
+                     "for": ", ".join(f"{n} in {name}" for name, n in uses),
+                     "mass_g": sum(n for _, n in uses) * f.slug_mass})
+    binder = sum(f.binder_volume for f in kit.fills.values())
+    rows.append({"item": p.binder_name, "quantity": f"{binder / 1000:.2f} cm³",
+                 "for": "the slugs' clearance in the three pockets", "mass_g": sum(f.binder_mass for f in kit.fills.values())})
+    return rows
+
+
+def _slug_fill(kit: A.BennettKit, length: float):
+    return next(f for f in kit.fills.values() if f.length == length)
+
+
+def _design(kit: A.BennettKit, raw: LoadedDesign) -> dict:
+    from .checks.bennett import balance_figures
+
+    p = kit.params
+    bal = {k: v for k, v in balance_figures(kit).items() if k not in ("trace", "grid")}
+    fills = {}
+    for part in kit.parts:
+        if part.role == "counterweight fill":
+            info = dict(part.info)
+            fills[info["part"]] = {k: v for k, v in info.items() if k != "part"}
+            fills[info["part"]]["pocket_offset_mm"] = kit.figures["pocket_offsets_mm"][int(info["part"][4:])]
+    return {"name": p.name, "kind": "bennett_butterfly", "config": raw.path.name,
+            "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha), "beta_deg": math.degrees(p.bb.beta),
+            "scales": [1.0, p.bb.s2, p.bb.s3, p.bb.s4], "home_angle_deg": math.degrees(p.home),
+            "workspace_deg": [math.degrees(x) for x in p.workspace], "layout": layout_yaml(kit),
+            "counterweights": fills, "bill": bill(kit), "bought": bought(kit), "infill_percent": 100 * p.infill,
+            "overhang_angle_deg": math.degrees(p.overhang_angle), "balance_tolerance_mm": p.tolerance,
+            "balance_mm": bal, **{k: v for k, v in kit.figures.items() if k not in ("pocket_offsets_mm", "next_pockets")}}
+
+
 def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
-    """Build the kit into ``dest`` (default out/<name>/): STLs, manifest (with the bill of masses and
-    the chosen layout), GLB, and the design with its layout pinned."""
+    """Build the kit into ``dest`` (default out/<name>/): STLs (each in its print orientation),
+    manifest (the bill of masses with their centres, how each part prints, what to buy and where it
+    goes, the chosen layout), GLB, and the design with its layout pinned."""
     from .export.kit import write_kit
     from .geometry.measure import oversize
 
@@ -77,24 +133,14 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
     data.setdefault("parts", {})["layout"] = layout_yaml(kit)
     dump = lambda d: yaml.safe_dump(d, sort_keys=False, allow_unicode=True).encode()  # noqa: E731
     files = {"design.yaml": dump(data), "printer.yaml": dump(read_yaml(raw.printer_path))}
-    design = {"name": p.name, "kind": "bennett_butterfly", "config": raw.path.name,
-              "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha),
-              "beta_deg": math.degrees(p.bb.beta),
-              "scales": [1.0, p.bb.s2, p.bb.s3, p.bb.s4], "home_angle_deg": math.degrees(p.home),
-              "workspace_deg": [math.degrees(x) for x in p.workspace], "layout": layout_yaml(kit),
-              "counterweights": {f"link{i:02d}": {"fill_g": kit.fill["fdm"][i], "fill": p.fill_name,
-                                                  "pocket_offset_mm": kit.figures["pocket_offsets_mm"][i]}
-                                 for i in p.cw_links},
-              "bill": bill(kit), "infill_percent": 100 * p.infill, **{k: v for k, v in kit.figures.items()
-                                                                     if k not in ("pocket_offsets_mm",)}}
     dest = Path(dest) if dest is not None else Path("out") / p.name
-    man = write_kit(kit, dest, design, files, progress=progress)
+    man = write_kit(kit, dest, _design(kit, raw), files, progress=progress)
     return loaded, kit, man, dest
 
 
 def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
-    """Balance over the input grid, interference over the workspace, stacks, pockets, printer fit;
-    for a kit folder also that its STLs are what its design.yaml builds."""
+    """Balance over the input grid, interference over the workspace, stacks, pins, printing, the
+    base, printer fit; for a kit folder also that its STLs are what its design.yaml builds."""
     from .checks.bennett import check_bennett
     from .checks.findings import Finding
     from .export.kit import printed
@@ -111,9 +157,59 @@ def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
     return loaded, kit, result, None
 
 
+def bill_text(man: dict, dest, seconds: float) -> str:
+    """What `build` prints: every printed part (layer, masses, fill, the support it needs) and what to buy."""
+    d = man["design"]
+    rows = d["bill"]
+    lines = [f"{d['name']}: Bennett a = {d['a_mm']:g} mm, b = {d['b_mm']:g} mm, α = {d['alpha_deg']:g}°, "
+             f"β = {d['beta_deg']:.2f}°, scales {', '.join(f'{s:g}' for s in d['scales'])}",
+             f"{'part':<10}{'layer':>6}{'solid g':>9}{'printed g':>11}{'fill g':>8}{'support mm²':>13}{'on bed mm²':>12}"
+             f"  (printed at {d['infill_percent']:g} % infill; support beyond {d['overhang_angle_deg']:g}°)"]
+    for r in rows:
+        lines.append(f"{r['part']:<10}{r['layer']:>6}{r['solid_g']:>9.1f}{r['printed_g']:>11.1f}"
+                     + (f"{r['fill_g']:>8.1f}" if r["fill_g"] else f"{'':>8}")
+                     + f"{r['support_mm2']:>13.0f}{r['bed_contact_mm2']:>12.0f}")
+    lines.append("buy:")
+    for b in d["bought"]:
+        lines.append(f"  {str(b['quantity']):>9} × {b['item']:<44} {b['mass_g']:7.1f} g  ({b['for']})")
+    bal = d["balance_mm"]
+    short = max(v for k, v in bal.items() if k.startswith("one_slug_short"))
+    lines.append(f"centre of mass within {bal['fdm']:.4f} mm of S as printed (tolerance {d['balance_tolerance_mm']:g} "
+                 f"mm); binder left out {bal['no_binder']:.2f} mm, one slug short {short:.1f} mm")
+    lines.append(f"wrote {dest}/ ({len(man['parts'])} STL in their print orientations, manifest.json, assembly.glb, "
+                 f"design.yaml with the layout pinned) in {seconds:.1f} s")
+    return "\n".join(lines)
+
+
+def check_text(loaded, result, seconds: float) -> str:
+    """What `check` prints for a Bennett kit."""
+    f = result.figures
+    b = f["balance_mm"]
+    short = max(v for k, v in b.items() if k.startswith("one_slug_short"))
+    st = f["base"]
+    lines = [f"{loaded.params.name}: balance over a {b['grid'][0]} × {b['grid'][1]} grid of (q1, angle between links 1 "
+             f"and 4); interference over {f['interference_samples']} shape angles, step {f['step_deg']:.2f}°",
+             f"  centre of mass from S: as printed {b['fdm']:.4f} mm, printed solid {b['solid']:.4f} mm, "
+             f"infill off by {100 * loaded.params.infill_error:g} points {b['fdm_infill_error']:.3f} mm, "
+             f"binder left out {b['no_binder']:.3f} mm, a pocket one slug short {short:.1f} mm"
+             + (f", what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else ""),
+             f"  least clearance {f['least_clearance_mm']:.2f} mm ({' – '.join(f['least_clearance_parts'])} at "
+             f"{f['least_clearance_angle_deg']:.1f}°); stacked bosses overlap {f['joint_stack_overlap_mm3']:.3f} mm³; "
+             + (f"moves freely from {f['free_range_deg'][0]:.1f}° to {f['free_range_deg'][1]:.1f}°"
+                if math.isfinite(f["free_range_deg"][0]) else "capsule hulls overlap at the home pose"),
+             f"  pins (stock lengths): {', '.join(f'{n} × {k} mm' for k, n in f['pins']['count_by_length'].items())}; "
+             f"base: {st['footprint_mm2']:.0f} mm² on the bed, stands to {st['tip_angle_deg']:.1f}° of tilt, links "
+             f"{st['links_above_table_mm']:.0f} mm above the table",
+             "  support (mm²): " + ", ".join(f"{k} {v['support_mm2']:.0f}" for k, v in f["printing"].items())]
+    lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+    lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s")
+    return "\n".join(lines)
+
+
 def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
     """One page: the design, the linkage at a few poses (planar and spatial), the assembled kit, the
-    balance (centre-of-mass trace under each mass model), the interference sweep, the bill of parts."""
+    balance (centre-of-mass trace, the fill's sensitivity), the interference sweep, the base, how
+    each part prints, the bill of parts and what to buy."""
     from .checks.bennett import check_bennett
     from .export import report as R
     from .export.bennett_plots import com_figure, poses_figure
@@ -131,10 +227,11 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
     lo, hi = (math.degrees(x) for x in p.workspace)
     poses = poses_figure(p.bb, [lo, math.degrees(p.home), hi])
     ang = np.linspace(lo, hi, p.grid[1])
-    labels = {"fdm": "as printed (FDM model), weights sized for it", "solid": "solid model (fills re-sized for it)",
+    labels = {"fdm": "as printed (FDM model), the fills as they sit", "solid": "printed solid (100 % infill)",
               "fdm_infill_error": f"infill {100 * p.infill:g} → {100 * (p.infill + p.infill_error):g} %",
-              "solid_weights_printed_fdm": "weights sized for solid parts, printed FDM",
-              "what_if_mass_scale": f"what-if heavier links {dict(p.mass_scale)}"}
+              "no_binder": "the binder left out", "what_if_mass_scale": f"what-if heavier links {dict(p.mass_scale)}"}
+    labels.update({k: f"{k[len('one_slug_short_'):]} one slug short" for k in f["balance_trace_mm"]
+                   if k.startswith("one_slug_short_")})
     com = com_figure(ang, f["balance_trace_mm"], p.tolerance, labels)
     placed = kit.poses(0.0)
     meshes = []
@@ -143,15 +240,17 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
             continue
         v, fc = mesh_arrays(part.solid)
         T = placed[part.name]
-        colour = "#bbbbbb" if part.name == "base" else ("#f58518" if part.name in
-                                                        {f"link{i:02d}" for i in p.cw_links} else "#4c78a8")
+        colour = {"bennett_base": "#bbbbbb", "counterweight fill": "#555555"}.get(part.role, "#f58518" if part.name in
+                                                                                  {f"link{i:02d}" for i in p.cw_links} else "#4c78a8")
         meshes.append((v @ T[:3, :3].T + T[:3, 3], fc, colour))
     kit_png = render(meshes, (640, 560), elev=30, azim=-60)
     top_png = render(meshes, (640, 560), elev=89, azim=-90)
+
     def g(x):
         return "" if not x else f"{x:.1f}"
-    rows = [[r["part"], "–" if r["layer"] is None else r["layer"], r.get("bought", "printed"), g(r["solid_g"]),
-             g(r["printed_g"]), g(r["fill_g"]), g(r["pins_g"])] for r in bill(kit)]
+    rows = [[r["part"], r["layer"], g(r["solid_g"]), g(r["printed_g"]), g(r["fill_g"]), g(r["pins_g"]),
+             f"{r['support_mm2']:.0f}", f"{r['bed_contact_mm2']:.0f}", f"{r['print_height_mm']:.0f}"] for r in bill(kit)]
+    buy = [[x["item"], x["quantity"], x["for"], f"{x['mass_g']:.1f}"] for x in bought(kit)]
     lay = kit.layout
     shifts = {i: ", ".join(f"{j} {v:+g} mm" for j, v in sorted(lay.shift.items()) if v and i in lay.members(j))
               for i in range(1, 13)}
@@ -163,12 +262,17 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
               "why one pin cannot work.</p>"
               + R.table(["link", "layer", "shift of its stacks"],
                         [[f"link{i:02d}", lay.layer[i], shifts[i]] for i in range(1, 13)]))
+    short = {k[len("one_slug_short_"):]: v for k, v in b.items() if k.startswith("one_slug_short_")}
+    fills = "".join(f"<li>{html.escape(x.message)}</li>" for x in result.findings if x.check == "counterweight")
     balance = (f'<p class="{"ok" if result.ok else "fail"}">Worst distance of the common centre of mass from S over a '
-               f"{p.grid[0]} × {p.grid[1]} grid (q1 over a turn × the workspace): as printed {b['fdm']:.4f} mm; the "
-               f"solid model, fills re-sized for it {b['solid']:.4f} mm; infill {100 * p.infill_error:g} points off "
-               f"{b['fdm_infill_error']:.3f} mm; counterweights sized for solid parts {b['solid_weights_printed_fdm']:.3f} mm"
+               f"{p.grid[0]} × {p.grid[1]} grid (q1 over a turn × the workspace): as printed, the fills as they sit "
+               f"(slugs and binder filling each pocket, centred in it) {b['fdm']:.4f} mm (tolerance {p.tolerance:g} mm); "
+               f"printed solid {b['solid']:.3f} mm; infill {100 * p.infill_error:g} points off {b['fdm_infill_error']:.3f} mm"
                + (f"; what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else "")
-               + f" (tolerance {p.tolerance:g} mm).</p>" + R.img(com, "centre of mass trace"))
+               + ".</p><p>The fill is exact only as built: with the binder left out "
+               f"{b['no_binder']:.3f} mm; one slug short (the top one missing) "
+               + ", ".join(f"in {k} {v:.2f} mm" for k, v in short.items()) + f".</p><ul>{fills}</ul>"
+               + R.img(com, "centre of mass trace"))
     interference = (f"<p>{f['interference_samples']} shape angles at {f['step_deg']:.2f}° steps: the fastest point "
                     f"moves {f['fastest_point_mm_per_rad']:.0f} mm per radian, so no point moves more than a bar's radius "
                     f"({p.bar_radius:g} mm) between samples. Least clearance {f['least_clearance_mm']:.2f} mm "
@@ -177,11 +281,21 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
                     f"{f['free_range_deg'][1]:.1f}°.</p>"
                     + "".join(f"<p class='fail'>{x.check}: {html.escape(x.message)}</p>" for x in result.findings
                               if x.severity == "fail"))
+    st = f["base"]
+    base = (f"<p>A post on a Ø{2 * p.foot_radius:g} mm foot, printed standing on it ({st['footprint_mm2']:.0f} mm² flat on "
+            f"the bed), the S pin's bore open at the top. The whole kit ({st['total_g']:.0f} g) has its centre of mass "
+            f"{st['com_height_mm']:.0f} mm over the bed and at least {st['margin_mm']:.1f} mm inside the foot's edge in "
+            f"every pose of the grid: it stands tilted up to {st['tip_angle_deg']:.1f}° (required "
+            f"{math.degrees(p.min_tip_angle):g}°). The links stay {st['links_above_table_mm']:.0f} mm above the table.</p>")
     sections = [("Design", design), ("Poses", R.img(poses, "poses")),
                 ("Kit", f'<div class="grid"><figure>{R.img(kit_png, "kit")}<figcaption>at home</figcaption></figure>'
                         f'<figure>{R.img(top_png, "kit from above")}<figcaption>from above</figcaption></figure></div>'),
-                ("Balance", balance), ("Interference", interference),
-                ("Bill of parts", R.table(["part", "layer", "kind", "solid g", "printed g", "fill g", "pins g"], rows))]
+                ("Balance", balance), ("Interference", interference), ("Base", base),
+                ("Bill of parts", f"<p>Each part prints in the orientation that needs the least support beyond "
+                                  f"{math.degrees(p.overhang_angle):g}° among its flat faces (the STLs are written so).</p>"
+                 + R.table(["part", "layer", "solid g", "printed g", "fill g", "pins g", "support mm²", "on bed mm²",
+                            "height mm"], rows)),
+                ("Bought parts", R.table(["item", "quantity", "for", "g"], buy))]
     out = Path(dest) if dest else Path("out") / p.name / "report"
     with atomic_dir(out) as tmp:
         (tmp / "index.html").write_text(R.page(f"partgen report: {p.name}", sections, raw.path.name), encoding="utf-8")

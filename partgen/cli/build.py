@@ -70,21 +70,7 @@ def run(args) -> int:
 
 
 def bennett_table(man: dict, dest, seconds: float) -> str:
-    """The bill of a Bennett butterfly kit: every link's mass solid / as printed / fill, the pins."""
-    d = man["design"]
-    rows = d["bill"]
-    printed = sum(r["printed_g"] or 0 for r in rows)
-    fill = sum(r["fill_g"] for r in rows)
-    pins = sum(r["pins_g"] for r in rows if r["part"].startswith("pin"))
-    lines = [f"{d['name']}: Bennett a = {d['a_mm']:g} mm, b = {d['b_mm']:g} mm, α = {d['alpha_deg']:g}°, "
-             f"β = {d['beta_deg']:.2f}°, scales {', '.join(f'{s:g}' for s in d['scales'])}",
-             f"{'part':<10}{'layer':>6}{'solid g':>9}{'printed g':>11}{'fill g':>8}  (printed at {d['infill_percent']:g} % infill)"]
-    for r in rows:
-        if r["part"].startswith("link"):
-            lines.append(f"{r['part']:<10}{r['layer']:>6}{r['solid_g']:>9.1f}{r['printed_g']:>11.1f}"
-                         + (f"{r['fill_g']:>8.1f}" if r["fill_g"] else ""))
-    lines.append(f"18 steel pins {pins:.0f} g; printed links {printed:.0f} g; counterweight fill {fill:.0f} g; "
-                 f"stack shifts (mm along the joint axes) {d['layout']['shifts_mm']}")
-    lines.append(f"wrote {dest}/ ({len(man['parts'])} STL, manifest.json, assembly.glb, design.yaml with the layout "
-                 f"pinned) in {seconds:.1f} s")
-    return "\n".join(lines)
+    """The bill of a Bennett butterfly kit (``pipeline_bennett.bill_text``)."""
+    from ..pipeline_bennett import bill_text
+
+    return bill_text(man, dest, seconds)

@@ -55,21 +55,9 @@ def _wrist_table(loaded, result, seconds: float) -> str:
 
 
 def _bennett_table(loaded, result, seconds: float) -> str:
-    f = result.figures
-    b = f["balance_mm"]
-    lines = [f"{loaded.params.name}: balance over a {b['grid'][0]} × {b['grid'][1]} grid of (q1, angle between links 1 "
-             f"and 4); interference over {f['interference_samples']} shape angles, step {f['step_deg']:.2f}°",
-             f"  centre of mass from S: as printed {b['fdm']:.4f} mm, solid model (fills re-sized) {b['solid']:.4f} mm, "
-             f"infill off by {100 * loaded.params.infill_error:g} points {b['fdm_infill_error']:.3f} mm, "
-             f"weights sized for solid parts {b['solid_weights_printed_fdm']:.3f} mm"
-             + (f", what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else ""),
-             f"  least clearance {f['least_clearance_mm']:.2f} mm ({' – '.join(f['least_clearance_parts'])} at "
-             f"{f['least_clearance_angle_deg']:.1f}°); stacked bosses overlap {f['joint_stack_overlap_mm3']:.3f} mm³; "
-             + (f"moves freely from {f['free_range_deg'][0]:.1f}° to {f['free_range_deg'][1]:.1f}°"
-                if math.isfinite(f["free_range_deg"][0]) else "capsule hulls overlap at the home pose")]
-    lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-    lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s")
-    return "\n".join(lines)
+    from ..pipeline_bennett import check_text
+
+    return check_text(loaded, result, seconds)
 
 
 def _table(loaded, result, folder, seconds: float) -> str:

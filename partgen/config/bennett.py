@@ -30,14 +30,19 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
                           f"({parts.boss_length_mm} mm): a bar would stand proud of its boss into the next one on the pin")
     if len(set(cw.links)) != 3:
         raise ConfigError(loaded.path, "counterweights.links", "three different links")
-    if cw.wall_mm * 2 >= cw.outer_diameter_mm or cw.wall_mm >= cw.height_mm:
-        raise ConfigError(loaded.path, "counterweights.wall_mm", "leaves no pocket inside the cup")
     if d.pin.diameter_mm + d.pin.clearance_diametral_mm >= parts.boss_diameter_mm - 2 * p.min_wall_mm:
         raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore leaves less than the printer's {p.min_wall_mm} mm "
                           f"wall in a {parts.boss_diameter_mm} mm boss")
     if d.pin.diameter_mm + d.pin.clearance_diametral_mm < p.min_hole_diameter_mm:
         raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore is below the printer's smallest reliable hole "
                           f"({p.min_hole_diameter_mm} mm)")
+    need = 2 * parts.boss_length_mm + parts.axial_gap_mm
+    if max(d.pin.stock_lengths_mm) < need:
+        raise ConfigError(loaded.path, "pin.stock_lengths_mm", f"the longest stock pin ({max(d.pin.stock_lengths_mm):g} mm) "
+                          f"is shorter than two stacked bosses ({need:g} mm)")
+    if d.base.foot_diameter_mm < parts.boss_diameter_mm:
+        raise ConfigError(loaded.path, "base.foot_diameter_mm", f"{d.base.foot_diameter_mm:g} mm is narrower than the "
+                          f"post ({parts.boss_diameter_mm:g} mm) it carries")
     fixed = None
     if parts.layout != "auto":
         missing = sorted(set(range(1, 13)) - set(parts.layout.layers))
@@ -51,10 +56,15 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
         bar_radius=parts.bar_diameter_mm / 2, pin_radius=d.pin.diameter_mm / 2,
         pin_clearance=d.pin.clearance_diametral_mm, pin_density=d.pin.density_g_cm3 / 1000.0, pin_kind=d.pin.kind,
         offset_step=parts.offset_step_mm, offset_max=parts.offset_max_mm, cw_links=tuple(cw.links),
-        cw_distance=tuple(cw.distance_mm), cw_outer_radius=cw.outer_diameter_mm / 2, cw_height=cw.height_mm,
-        cw_wall=cw.wall_mm, fill_name=cw.fill.name, fill_density=cw.fill.density_g_cm3 / 1000.0,
+        cw_distance=tuple(cw.distance_mm), cw_wall=cw.wall_mm, cw_clearance=cw.clearance_diametral_mm,
+        slug_kind=cw.slugs.kind, slug_diameter=cw.slugs.diameter_mm, slug_lengths=tuple(sorted(cw.slugs.lengths_mm)),
+        slug_density=cw.slugs.density_g_cm3 / 1000.0, binder_name=cw.binder.name,
+        binder_density=cw.binder.density_g_cm3 / 1000.0, pin_stock=tuple(sorted(d.pin.stock_lengths_mm)),
         density=d.material.density_g_cm3 / 1000.0, material=d.material.name, print_wall=d.print.wall_mm,
-        print_skin=d.print.skin_mm, infill=d.print.infill_percent / 100.0, base_height=d.base.height_mm,
+        print_skin=d.print.skin_mm, infill=d.print.infill_percent / 100.0,
+        overhang_angle=math.radians(d.print.overhang_angle_deg), min_contact=d.print.min_bed_contact_mm2,
+        base_height=d.base.height_mm, foot_radius=d.base.foot_diameter_mm / 2, foot_thickness=d.base.foot_thickness_mm,
+        min_tip_angle=math.radians(d.base.min_tip_angle_deg),
         tolerance=d.checks.balance_tolerance_mm, grid=tuple(d.checks.grid),
         infill_error=d.checks.infill_error_percent_points / 100.0, layers=parts.layers, fixed_layout=fixed,
         mass_scale=tuple(sorted(d.checks.mass_scale.items())),

@@ -324,32 +324,55 @@ class BennettParts(Strict):
     segments: Annotated[int, Field(ge=12, le=256)] = 40
 
 
+# ISO 2338 / ISO 8734 parallel (dowel) pins: the standards' length series within the Ø10 mm range
+# (ISO 2338: 18–95 mm, ISO 8734: 22–100 mm); shorten the list to what a supplier stocks
+DOWEL_LENGTHS_10_MM = [18.0, 20.0, 22.0, 24.0, 26.0, 28.0, 30.0, 32.0, 35.0, 40.0, 45.0, 50.0, 55.0, 60.0, 65.0, 70.0,
+                       75.0, 80.0, 85.0, 90.0, 95.0, 100.0]
+
+
 class Pin(Strict):
-    kind: str = "steel dowel pin"
+    kind: str = "steel dowel pin (ISO 2338/8734)"
     diameter_mm: Pos
     clearance_diametral_mm: NonNeg
+    density_g_cm3: Pos = 7.85
+    stock_lengths_mm: Annotated[list[Pos], Field(min_length=1)] = Field(
+        default=DOWEL_LENGTHS_10_MM, description="lengths the pins can be bought in (the stock list for Ø10)")
+
+
+class Slugs(Strict):
+    """Stock steel slugs a counterweight pocket holds, stacked end to end in a bore that fits them."""
+
+    kind: str = "steel dowel pin (ISO 8734)"
+    diameter_mm: Pos = 20.0
+    lengths_mm: Annotated[list[Pos], Field(min_length=1)] = [20.0, 25.0, 30.0, 35.0, 40.0, 45.0, 50.0, 60.0]
     density_g_cm3: Pos = 7.85
 
 
 class Counterweights(Strict):
-    """Pockets on three links, filled with ``fill`` to the mass the balance conditions ask."""
+    """Pockets on three links, each holding a whole number of stock ``slugs`` with ``binder``
+    filling the rest of the pocket to the brim."""
 
     links: Annotated[list[Annotated[int, Field(ge=1, le=12)]], Field(min_length=3, max_length=3)]
     distance_mm: Annotated[list[float], Field(min_length=3, max_length=3)]
-    outer_diameter_mm: Pos
-    height_mm: Pos
     wall_mm: Pos
-    fill: Material
+    clearance_diametral_mm: NonNeg = 0.3
+    slugs: Slugs = Slugs()
+    binder: Material = Material(name="epoxy", density_g_cm3=1.15)
 
 
 class PrintCfg(Strict):
     wall_mm: Pos = 1.2
     skin_mm: Pos = 1.0
     infill_percent: Annotated[float, Field(ge=0, le=100)] = 20.0
+    overhang_angle_deg: Annotated[float, Field(gt=0, lt=90)] = 45.0
+    min_bed_contact_mm2: Pos = 100.0
 
 
 class BennettBase(Strict):
     height_mm: Pos = 80.0
+    foot_diameter_mm: Pos = 100.0
+    foot_thickness_mm: Pos = 5.0
+    min_tip_angle_deg: Annotated[float, Field(gt=0, lt=90)] = 10.0
 
 
 class BennettChecks(Strict):

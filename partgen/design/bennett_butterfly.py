@@ -34,7 +34,7 @@ from .balanced import Butterfly
 from .bennett import check_bennett, joint_angles
 
 __all__ = ["BennettButterfly", "BennettParams", "JOINTS", "GROUP", "REFERENCE", "Pose", "pose", "link_frames", "body_joints",
-           "centre_of_mass", "mass_moment", "solve_point_masses", "solve_counterweights", "shape_angle"]
+           "centre_of_mass", "mass_moment", "solve_point_masses", "solve_counterweights", "solve_offsets", "shape_angle"]
 
 # joint: (links it connects, the Bennett-1 joint its axis is parallel to, the point it sits at)
 JOINTS: dict[str, tuple[tuple[int, int], str, str]] = {
@@ -211,8 +211,9 @@ def solve_counterweights(p: Pose, masses: dict[int, float], body_coms: dict[int,
 
     The moment is linear in each mass m and in h = m·δ, so this is a linear problem. The balance has
     fewer independent conditions than unknowns; of its exact solutions the minimum-norm one in
-    (m/mass_weight, h) is taken, so offsets are kept small (in the Bennett butterfly the masses come
-    out the same whatever the weight: the conditions fix them, the offsets take up the rest).
+    (m/mass_weight, h) is taken, so offsets are kept small. The masses are not fixed by the balance
+    (a heavier weight sits closer: ``solve_offsets`` balances weights of given masses), so this
+    gives the masses that need the smallest offsets, which the kit rounds to whole stock slugs.
     Returns masses (k,) g, offsets δ (k, 3) mm in the body frames, and the worst remaining moment
     per unit mass (mm)."""
     frames = link_frames(p)
@@ -236,6 +237,35 @@ def solve_counterweights(p: Pose, masses: dict[int, float], body_coms: dict[int,
     return m, delta, float(np.linalg.norm(resid, axis=1).max() / total)
 
 
+def solve_offsets(p: Pose, masses: dict[int, float], body_coms: dict[int, np.ndarray],
+                  at: list[tuple[int, np.ndarray, float]], moving: dict[int, tuple[float, np.ndarray]] | None = None
+                  ) -> tuple[np.ndarray, float]:
+    """Counterweights of given masses on links ``at`` [(link, nominal body point (3,), mass g)]: how
+    far δ (3,) each must sit off its nominal point for the common centre of mass to stay at S.
+
+    The moment is linear in δ; the balance leaves some of it free (moving pockets together in ways
+    whose moments cancel in every pose), and the minimum-norm δ is taken: the smallest offsets.
+    ``moving``: link -> (μ g, δ₀ (3,)): the link's own mass moment follows its pocket, Σmc(δ) ≈
+    Σmc(δ₀) + μ·(δ − δ₀) (the cup and its bars move with it), solved with the rest (a Newton step
+    for the sizing loop). Returns δ (k, 3) mm in the body frames and the worst remaining moment per
+    unit mass (mm)."""
+    frames = link_frames(p)
+    rhs = -mass_moment(frames, masses, body_coms)
+    cols = []
+    for i, p0, m in at:
+        R, t = frames[i][:, :3, :3], frames[i][:, :3, 3]
+        rhs = rhs - m * (R @ np.asarray(p0, float) + t)
+        mu, d0 = (moving or {}).get(i, (0.0, np.zeros(3)))
+        rhs = rhs + mu * (R @ np.asarray(d0, float))
+        cols += [(m + mu) * R[:, :, k].ravel() for k in range(3)]
+    A = np.column_stack(cols)
+    d, *_ = np.linalg.lstsq(A, rhs.ravel(), rcond=None)
+    resid = (A @ d - rhs.ravel()).reshape(-1, 3)
+    delta = d.reshape(-1, 3)
+    total = sum(masses.values()) + sum(m for _, _, m in at)
+    return delta, float(np.linalg.norm(resid, axis=1).max() / total)
+
+
 @dataclass(frozen=True)
 class BennettParams:
     """Everything the kit needs (mm, rad, g/mm³); the assembly layer builds it."""
@@ -252,21 +282,30 @@ class BennettParams:
     pin_clearance: float  # diametral
     pin_density: float
     pin_kind: str
+    pin_stock: tuple[float, ...]  # the lengths a pin can be bought in, mm
     offset_step: float
     offset_max: float
     cw_links: tuple[int, ...]
     cw_distance: tuple[float, ...]
-    cw_outer_radius: float
-    cw_height: float
-    cw_wall: float
-    fill_name: str
-    fill_density: float
+    cw_wall: float  # around and under a pocket
+    cw_clearance: float  # diametral, the pocket's bore over the slugs
+    slug_kind: str
+    slug_diameter: float
+    slug_lengths: tuple[float, ...]  # stock
+    slug_density: float
+    binder_name: str
+    binder_density: float
     density: float
     material: str
     print_wall: float
     print_skin: float
     infill: float  # fraction 0..1
-    base_height: float
+    overhang_angle: float  # rad from the vertical: steeper faces need support
+    min_contact: float  # mm² of flat contact with the bed a part needs
+    base_height: float  # the post from the base's top boss down to its foot
+    foot_radius: float
+    foot_thickness: float
+    min_tip_angle: float  # rad: the kit stays up on its base tilted this far
     tolerance: float  # balance tolerance, mm
     grid: tuple[int, int]  # balance grid: q1 samples × shape samples
     infill_error: float  # fraction points, e.g. 0.05

@@ -11,11 +11,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import manifold3d as m3d
 import numpy as np
 
-__all__ = ["skew_link", "distal_axis", "Boss", "Bar", "Cup", "link_solid", "capsules", "cylinder_capsules", "pin_solid"]
+from .printing import rotation_between
+
+__all__ = ["skew_link", "distal_axis", "place_on_axis", "Boss", "Bar", "Cup", "Column", "link_solid", "base_solid", "capsules",
+           "cylinder_capsules", "pin_solid"]
 
 
 def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
@@ -23,19 +27,10 @@ def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
     return np.array([a, 0.0, 0.0]), np.array([0.0, -math.sin(alpha), math.cos(alpha)])
 
 
-def _place(solid: m3d.Manifold, point: np.ndarray, direction: np.ndarray, offset: float) -> m3d.Manifold:
+def place_on_axis(solid: m3d.Manifold, point: np.ndarray, direction: np.ndarray, offset: float) -> m3d.Manifold:
     """Move a z-aligned solid so its axis is the line (point, direction), centred ``offset`` along it."""
     d = direction / np.linalg.norm(direction)
-    z = np.array([0.0, 0.0, 1.0])
-    axis = np.cross(z, d)
-    s, c = np.linalg.norm(axis), float(z @ d)
-    if s < 1e-12:
-        R = np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])
-    else:
-        k = axis / s
-        K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-        R = np.eye(3) + s * K + (1 - c) * K @ K
-    T = np.column_stack([R, point + offset * d])
+    T = np.column_stack([rotation_between((0.0, 0.0, 1.0), d), point + offset * d])
     return solid.transform(T)
 
 
@@ -62,10 +57,10 @@ class Boss:
     length: float
     bore_radius: float
 
-    @property
+    @cached_property
     def centre(self) -> np.ndarray:
         d = np.asarray(self.axis, float)
-        return np.asarray(self.point, float) + self.offset * d / np.linalg.norm(d)
+        return np.asarray(self.point, float) + self.offset * d / math.sqrt(float(d @ d))
 
 
 @dataclass(frozen=True)
@@ -101,21 +96,21 @@ class Cup:
 
 def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segments: int = 48) -> m3d.Manifold:
     """A link as one solid: bosses, bars and cups united, then every bore and pocket cut."""
-    add = [_place(m3d.Manifold.cylinder(b.length, b.radius, -1.0, segments, True), np.asarray(b.point, float),
+    add = [place_on_axis(m3d.Manifold.cylinder(b.length, b.radius, -1.0, segments, True), np.asarray(b.point, float),
                   np.asarray(b.axis, float), b.offset) for b in bosses]
     for bar in bars:
         ball = m3d.Manifold.sphere(bar.radius, segments)
         add.append(m3d.Manifold.batch_hull([ball.translate(tuple(map(float, bar.p0))),
                                             ball.translate(tuple(map(float, bar.p1)))]))
     for c in cups:
-        add.append(_place(m3d.Manifold.cylinder(c.height, c.outer_radius, -1.0, segments, False), np.asarray(c.point, float),
+        add.append(place_on_axis(m3d.Manifold.cylinder(c.height, c.outer_radius, -1.0, segments, False), np.asarray(c.point, float),
                           np.asarray(c.axis, float), 0.0))
     # bores run a little past the faces (bars meeting a boss end within its faces: bar radius ≤ half its length)
-    cut = [_place(m3d.Manifold.cylinder(b.length + 0.4, b.bore_radius, -1.0, segments, True), np.asarray(b.point, float),
+    cut = [place_on_axis(m3d.Manifold.cylinder(b.length + 0.4, b.bore_radius, -1.0, segments, True), np.asarray(b.point, float),
                   np.asarray(b.axis, float), b.offset) for b in bosses]
     for c in cups:
         start = c.height - c.pocket_depth
-        cut.append(_place(m3d.Manifold.cylinder(c.pocket_depth + 0.1, c.pocket_radius, -1.0, segments, False),
+        cut.append(place_on_axis(m3d.Manifold.cylinder(c.pocket_depth + 0.1, c.pocket_radius, -1.0, segments, False),
                           np.asarray(c.point, float), np.asarray(c.axis, float), start))
     return m3d.Manifold.batch_boolean(add, m3d.OpType.Add) - m3d.Manifold.batch_boolean(cut, m3d.OpType.Add)
 
@@ -125,40 +120,74 @@ def cylinder_capsules(centre: np.ndarray, axis: np.ndarray, radius: float, lengt
     """Capsules that together contain a cylinder: ``spokes`` diameters of its mid-plane disc with
     radius √((length/2)² + (radius·sin(π/2k))²) — reaching past the flat faces by far less than
     one capsule along the axis would for a short, fat boss. ((k, 2, 3), (k,))"""
-    d = np.asarray(axis, float) / np.linalg.norm(axis)
-    u = np.cross(d, [1.0, 0, 0] if abs(d[0]) < 0.9 else [0, 1.0, 0])
-    u /= np.linalg.norm(u)
-    v = np.cross(d, u)
-    ends, k = [], spokes
-    for i in range(k):
-        t = math.pi * i / k
-        w = radius * (math.cos(t) * u + math.sin(t) * v)
-        ends.append([centre - w, centre + w])
-    r = math.hypot(length / 2, radius * math.sin(math.pi / (2 * k)))
-    return np.asarray(ends), np.full(k, r)
+    d = np.asarray(axis, float) / math.sqrt(float(np.dot(axis, axis)))
+    # a unit u ⟂ d and v = d × u
+    u = np.array([0.0, d[2], -d[1]]) if abs(d[0]) < 0.9 else np.array([-d[2], 0.0, d[0]])
+    u /= math.sqrt(float(u @ u))
+    v = np.array([d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]])
+    t = np.pi * np.arange(spokes) / spokes
+    w = radius * (np.cos(t)[:, None] * u + np.sin(t)[:, None] * v)
+    c = np.asarray(centre, float)
+    r = math.hypot(length / 2, radius * math.sin(math.pi / (2 * spokes)))
+    return np.stack([c - w, c + w], axis=1), np.full(spokes, r)
 
 
-def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = ()) -> tuple[np.ndarray, np.ndarray, list[int]]:
+@dataclass(frozen=True)
+class Column:
+    """A round post on the z axis from z0 to z1 (mm), radius mm; ``spokes`` for its capsule cover
+    when it is a flat disc (a foot), 0 for one capsule along the axis (a post)."""
+
+    z0: float
+    z1: float
+    radius: float
+    spokes: int = 0
+
+
+def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), columns: list[Column] = ()
+             ) -> tuple[np.ndarray, np.ndarray, list[int]]:
     """Capsules that contain the features: ((k, 2, 3) segment ends mm, (k,) radii mm, and for each
-    capsule the index of its feature in bosses + bars + cups). Bosses and cups are covered by
-    ``cylinder_capsules``; a bar is a capsule exactly."""
+    capsule the index of its feature in bosses + bars + cups + columns). Bosses, cups and feet are
+    covered by ``cylinder_capsules``; a bar is a capsule exactly, and so is a post's core (its
+    caps reach a radius past its ends)."""
     ends, radii, owner = [], [], []
     for n, b in enumerate(bosses):
         e, r = cylinder_capsules(b.centre, np.asarray(b.axis, float), b.radius, b.length)
-        ends += list(e)
-        radii += list(r)
+        ends.append(e)
+        radii.append(r)
         owner += [n] * len(r)
-    for n, bar in enumerate(bars):
-        ends.append([bar.p0, bar.p1])
-        radii.append(bar.radius)
-        owner.append(len(bosses) + n)
+    if bars:
+        ends.append(np.array([[bar.p0, bar.p1] for bar in bars], float))
+        radii.append(np.array([bar.radius for bar in bars], float))
+        owner += list(range(len(bosses), len(bosses) + len(bars)))
     for n, c in enumerate(cups):
         d = np.asarray(c.axis, float) / np.linalg.norm(c.axis)
         e, r = cylinder_capsules(np.asarray(c.point, float) + d * c.height / 2, d, c.outer_radius, c.height)
-        ends += list(e)
-        radii += list(r)
+        ends.append(e)
+        radii.append(r)
         owner += [len(bosses) + len(bars) + n] * len(r)
-    return np.asarray(ends, float).reshape(-1, 2, 3), np.asarray(radii, float), owner
+    for n, col in enumerate(columns):
+        k = len(bosses) + len(bars) + len(cups) + n
+        if col.spokes:
+            e, r = cylinder_capsules(np.array([0.0, 0.0, (col.z0 + col.z1) / 2]), np.array([0.0, 0, 1]), col.radius,
+                                     col.z1 - col.z0, col.spokes)
+        else:
+            e, r = np.array([[[0.0, 0, col.z0], [0.0, 0, col.z1]]]), np.array([col.radius])
+        ends.append(e)
+        radii.append(r)
+        owner += [k] * len(r)
+    if not ends:
+        return np.zeros((0, 2, 3)), np.zeros(0), []
+    return np.concatenate(ends).reshape(-1, 2, 3), np.concatenate(radii), owner
+
+
+def base_solid(columns: list[Column], bore: tuple[float, float, float], segments: int = 48) -> m3d.Manifold:
+    """A stand on the z axis: round columns (a foot, a post) united, a bore (radius, z0, z1) cut
+    from z0 up through the top (open where the pin goes in)."""
+    add = [m3d.Manifold.cylinder(c.z1 - c.z0, c.radius, -1.0, max(segments, 4 * c.spokes), False).translate((0, 0, c.z0))
+           for c in columns]
+    r, z0, z1 = bore
+    cut = m3d.Manifold.cylinder(z1 - z0 + 0.4, r, -1.0, segments, False).translate((0, 0, z0))
+    return m3d.Manifold.batch_boolean(add, m3d.OpType.Add) - cut
 
 
 def pin_solid(length: float, radius: float, segments: int = 48) -> m3d.Manifold:

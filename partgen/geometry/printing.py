@@ -17,10 +17,14 @@ from dataclasses import dataclass
 
 import manifold3d as m3d
 import numpy as np
+import shapely
 import trimesh
+from shapely.geometry import Polygon
+
+from .solid import mesh_arrays
 
 __all__ = ["face_areas", "rotation_between", "overhang_area", "bed_contact_area", "shells", "Orientation",
-           "flat_faces", "best_orientation", "bore_open"]
+           "flat_faces", "best_orientation", "bore_open", "footprint"]
 
 FLAT = 1e-6  # a face lies in a plane if its normal is within this (1 − cos) of the plane's
 ON_BED = 1e-3  # mm: a vertex this close to the bed plane touches it (float32 STLs keep ~1e-5 mm)
@@ -78,6 +82,19 @@ def bed_contact_area(vertices: np.ndarray, faces: np.ndarray, down=(0.0, 0.0, -1
     return float(area[_on_bed(vertices, f, n, d)].sum())
 
 
+def footprint(vertices: np.ndarray, faces: np.ndarray, down=(0.0, 0.0, -1.0)):
+    """The region the part rests on, as a shapely shape in the bed's plane: the union of its faces flat
+    on the bed, in coordinates (x, y) of the frame whose −z is ``down`` (the part's own x, y when
+    down is −z). Empty for a point or line contact."""
+    d = np.asarray(down, float) / np.linalg.norm(down)
+    f = np.asarray(faces, np.int64)
+    _, n = face_areas(vertices, f)
+    R = rotation_between(d, (0.0, 0.0, -1.0))
+    xy = (np.asarray(vertices, float) @ R.T)[:, :2]
+    tris = [Polygon(xy[t]) for t in f[_on_bed(vertices, f, n, d)]]
+    return shapely.union_all([t for t in tris if t.area > 0]) if tris else Polygon()
+
+
 def shells(vertices: np.ndarray, faces: np.ndarray) -> list[float]:
     """Signed volume (mm³) of each shell (faces connected through shared vertices), largest first.
     A solid part has one positive shell; a negative one is a sealed void inside it."""
@@ -106,48 +123,56 @@ class Orientation:
     height_mm: float
 
 
-def flat_faces(vertices: np.ndarray, faces: np.ndarray, top: int = 12) -> list[tuple[np.ndarray, float]]:
-    """The part's largest flat faces it can rest on (planes with every vertex on one side):
-    [(outward unit normal (3,), flat area mm²)], largest first, at most ``top``."""
-    v = np.asarray(vertices, float)
-    f = np.asarray(faces, np.int64)
+def _resting_planes(v: np.ndarray, f: np.ndarray, top: int = 64) -> tuple[np.ndarray, np.ndarray]:
+    """The planes the part can rest on — its convex hull's, the largest ``top`` hull facets — as
+    outward unit normals (k, 3), and the area (k,) mm² of the part's own faces lying in each (0
+    where it would rest on points or edges)."""
     area, n = face_areas(v, f)
-    keep = area > 0
-    key = np.round(n[keep], 6)
-    normals, inv = np.unique(key, axis=0, return_inverse=True)
-    totals = np.bincount(inv.ravel(), weights=area[keep])
-    out = []
-    for k in np.argsort(-totals)[:4 * top]:  # curved surfaces: many normals, each of little area
-        d = normals[k] / np.linalg.norm(normals[k])
-        a = bed_contact_area(v, f, d)
-        if a > 0:
-            out.append((d, a))
-        if len(out) == top:
-            break
-    return sorted(out, key=lambda t: -t[1])
+    hv, hf = mesh_arrays(m3d.Manifold.hull_points(np.ascontiguousarray(v)))
+    ha, hn = face_areas(hv, hf)
+    keys, inv = np.unique(np.round(np.column_stack([hn, np.einsum("ij,ij->i", hn, hv[hf[:, 0]])]), 5), axis=0,
+                          return_inverse=True)
+    facet = np.bincount(inv.ravel(), weights=ha)
+    keys = keys[np.argsort(-facet, kind="stable")[:top]]
+    normals = keys[:, :3] / np.linalg.norm(keys[:, :3], axis=1)[:, None]
+    h = v @ normals.T  # (vertices, planes): each plane's extreme is the hull's
+    # a part face lies on a plane if it faces the same way and its vertices are at the plane's extreme
+    on = (n @ normals.T > 1 - FLAT) & np.all(h[f] >= h.max(axis=0)[None, None, :] - ON_BED, axis=1)
+    return normals, area @ on
 
 
-def best_orientation(vertices: np.ndarray, faces: np.ndarray, angle_deg: float = 45.0, min_contact_mm2: float = 0.0,
-                     top: int = 12) -> Orientation:
-    """The orientation that needs the least support among the part resting on each of its ``top``
-    largest flat faces (contact at least ``min_contact_mm2``): it lies on its largest flat face
-    unless another needs less support (ties: more contact, then lower). Without a flat face of
-    that size, the largest one."""
+def flat_faces(vertices: np.ndarray, faces: np.ndarray, top: int | None = None) -> list[tuple[np.ndarray, float]]:
+    """The flat faces the part can rest on (planes of its convex hull that its own faces lie in):
+    [(outward unit normal (3,), flat area mm²)], largest first, at most ``top``."""
+    normals, contact = _resting_planes(np.asarray(vertices, float), np.asarray(faces, np.int64))
+    order = [k for k in np.argsort(-contact, kind="stable") if contact[k] > 0]
+    return [(normals[k], float(contact[k])) for k in order[:top]]
+
+
+def best_orientation(vertices: np.ndarray, faces: np.ndarray, angle_deg: float = 45.0, min_contact_mm2: float = 0.0
+                     ) -> Orientation:
+    """The orientation that needs the least support of the part resting on any of its flat faces
+    with a contact of at least ``min_contact_mm2``: it lies on its largest flat face unless another
+    needs less support (ties: more contact, then lower). A part without a flat face that large
+    rests in whichever hull plane needs the least support (it prints on its supports; the caller
+    sees the small or zero contact)."""
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
-    cands = flat_faces(v, f, top)
-    if not cands:
-        raise ValueError("the part has no flat face to rest on")
-    ok = [c for c in cands if c[1] >= min_contact_mm2] or cands[:1]
-    best = None
-    for d, a in ok:
-        over = overhang_area(v, f, d, angle_deg)
-        R = rotation_between(d, (0.0, 0.0, -1.0))
-        z = v @ R[2]
-        key = (round(over, 3), -round(a, 3), round(float(z.max() - z.min()), 3))
-        if best is None or key < best[0]:
-            best = (key, Orientation(R, tuple(float(x) for x in d), over, a, float(z.max() - z.min())))
-    return best[1]
+    normals, contact = _resting_planes(v, f)
+    ok = np.flatnonzero(contact >= min_contact_mm2)
+    if not len(ok):
+        ok = np.arange(len(normals))
+    area, n = face_areas(v, f)
+    downs = normals[ok]
+    h = v @ downs.T
+    steep = n @ downs.T > math.sin(math.radians(angle_deg))  # (faces, candidates)
+    on_bed = np.all(h[f] >= h.max(axis=0)[None, None, :] - ON_BED, axis=1) & (n @ downs.T > 1 - FLAT)
+    over = area @ (steep & ~on_bed)
+    height = h.max(axis=0) - h.min(axis=0)
+    k = min(range(len(ok)), key=lambda i: (round(float(over[i]), 3), -round(float(contact[ok[i]]), 3),
+                                           round(float(height[i]), 3), i))
+    return Orientation(rotation_between(downs[k], (0.0, 0.0, -1.0)), tuple(float(x) for x in downs[k]),
+                       float(over[k]), float(contact[ok[k]]), float(height[k]))
 
 
 def bore_open(solid: m3d.Manifold, point, direction, radius: float, length: float, segments: int = 32) -> float:
