@@ -1,15 +1,19 @@
 """`partgen build / check / report` on a Bennett butterfly: the kit folder (watertight STLs, manifest
-with the bill of masses, the layout pinned in design.yaml), exit codes for a held and a failed
-balance, and bad input naming its key."""
+with the bill of masses, what to buy and where it goes, the layout pinned in design.yaml), the
+centre of mass recomputed from the kit folder alone, exit codes for a held and a failed balance, and
+bad input naming its key."""
 
 import json
+import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 import trimesh
 import yaml
 
 from partgen.cli.main import main
+from partgen.design import bennett_butterfly as bbf
 from partgen.testing import mesh_problems
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,7 +31,11 @@ def test_kit_folder(kit_dir):
     man = json.loads((kit_dir / "manifest.json").read_text())
     names = {p["name"] for p in man["parts"]}
     assert names == {f"link{i:02d}" for i in range(1, 13)} | {"base"}
-    assert len(man["purchased"]) == 18  # one steel pin per joint
+    pins = [b for b in man["purchased"] if b["role"] == "pin"]
+    fills = [b for b in man["purchased"] if b["role"] == "counterweight fill"]
+    assert len(pins) == 18 and len(fills) == 3  # one steel pin per joint, a fill per pocket
+    stock = yaml.safe_load((kit_dir / "design.yaml").read_text())["pin"]["stock_lengths_mm"]
+    assert all(b["length_mm"] in stock for b in pins)
     for p in man["parts"]:
         mesh = trimesh.load(kit_dir / p["file"])
         assert not mesh_problems(mesh), p["name"]
@@ -36,8 +44,60 @@ def test_kit_folder(kit_dir):
     bill = {r["part"]: r for r in man["design"]["bill"]}
     assert all(0 < bill[f"link{i:02d}"]["printed_g"] < bill[f"link{i:02d}"]["solid_g"] for i in range(1, 13))
     assert sum(r["fill_g"] > 0 for r in bill.values()) == 3
+    assert all(r["support_mm2"] >= 0 and r["bed_contact_mm2"] >= 0 for r in bill.values())
+    assert bill["base"]["bed_contact_mm2"] >= 100 and bill["base"]["support_mm2"] == 0
+    assert {b["item"] for b in man["design"]["bought"]} >= {f"{pins[0]['material']} Ø10 × {L:g} mm"
+                                                            for L in {b["length_mm"] for b in pins}}
     pinned = yaml.safe_load((kit_dir / "design.yaml").read_text())["parts"]["layout"]
     assert set(pinned["layers"]) == set(range(1, 13))
+
+
+def test_centre_of_mass_from_the_kit_folder_alone(kit_dir):
+    """Done-when of issue 13: read only the kit folder — each STL (its solid volume and centre by
+    trimesh must be the manifest's), the manifest's mass and centre as printed per part, the fills
+    (mass and centre in their part's STL frame) and the pins (stock length × Ø at the pin's density
+    from the kit's design.yaml, centre in their part's frame) — place every moving part at poses over
+    the workspace (its STL frame from the manifest's home placement, moved by the kinematics of the
+    manifest's a, b, α, β and scales) and the common centre of mass stays at S within the tolerance."""
+    man = json.loads((kit_dir / "manifest.json").read_text())
+    cfg = yaml.safe_load((kit_dir / "design.yaml").read_text())
+    d = man["design"]
+    rho_pin = cfg["pin"]["density_g_cm3"] / 1000
+    bill = {r["part"]: r for r in d["bill"]}
+    home = {p["name"]: np.array(p["placement"][0]) for p in man["parts"]}
+    masses = {}
+    for p in man["parts"]:
+        mesh = trimesh.load(kit_dir / p["file"])
+        r = bill[p["name"]]
+        assert np.allclose(mesh.center_mass, r["solid_centre_mm"], atol=2e-3), p["name"]
+        assert mesh.volume * cfg["material"]["density_g_cm3"] / 1000 == pytest.approx(r["solid_g"], rel=1e-4)
+        masses[p["name"]] = [(r["printed_g"], np.array(r["printed_centre_mm"]))]
+    for b in man["purchased"]:
+        if b["role"] == "pin":
+            m = rho_pin * math.pi * (b["diameter_mm"] / 2) ** 2 * b["length_mm"]
+            assert m == pytest.approx(b["mass_g"], rel=1e-6)
+            masses[b["counted_with"]].append((m, np.array(b["centre_mm"])))
+        else:
+            s = b["slugs"]
+            assert b["mass_g"] == pytest.approx(s["count"] * s["mass_g_each"] + b["binder"]["mass_g"], rel=1e-6)
+            masses[b["part"]].append((b["mass_g"], np.array(b["centre_mm"])))
+    bb = bbf.BennettButterfly(d["a_mm"], d["b_mm"], math.radians(d["alpha_deg"]), math.radians(d["beta_deg"]),
+                              *d["scales"][1:])
+    at_home = bbf.link_frames(bbf.pose(bb, 0.0, -math.radians(d["home_angle_deg"])))
+    body_from_stl = {i: np.linalg.inv(at_home[i][0]) @ home[f"link{i:02d}"] for i in range(1, 13)}
+    lo, hi = (math.radians(x) for x in d["workspace_deg"])
+    q1, ang = (g.ravel() for g in np.meshgrid(np.linspace(0, 2 * np.pi, 12, endpoint=False), np.linspace(lo, hi, 9)))
+    frames = bbf.link_frames(bbf.pose(bb, q1, q1 - ang))
+    total, moment = 0.0, np.zeros((len(q1), 3))
+    for i in range(1, 13):  # the moving parts (the base and the pin it holds stand still)
+        T = frames[i] @ body_from_stl[i]
+        for m, c in masses[f"link{i:02d}"]:
+            total += m
+            moment += m * (T[:, :3, :3] @ c + T[:, :3, 3])
+    worst = np.linalg.norm(moment / total, axis=1).max()
+    assert worst < d["balance_tolerance_mm"]
+    assert worst < 1e-3  # and as tight as the kit says (its own figure: within 0.0001 mm)
+    assert d["balance_mm"]["fdm"] < 1e-3
 
 
 def test_check_a_kit_folder_holds(kit_dir, capsys):
@@ -68,7 +128,8 @@ def test_a_heavier_link_fails_the_check(capsys):
 def test_report_page(tmp_path):
     assert main(["report", str(FIXED), "-o", str(tmp_path / "rep")]) == 0
     page = (tmp_path / "rep" / "index.html").read_text()
-    for words in ("Poses", "Balance", "Interference", "Bill of parts", "link12"):
+    for words in ("Poses", "Balance", "Interference", "Base", "Bill of parts", "Bought parts", "link12", "support mm²",
+                  "one slug short", "binder left out"):
         assert words in page
     assert page.count("data:image/png") >= 4
 
@@ -80,6 +141,9 @@ def test_report_page(tmp_path):
     (lambda d: d["pin"].__setitem__("diameter_mm", 4.0), "pin.diameter_mm"),
     (lambda d: d["linkage"].__setitem__("workspace_deg", [90.0, 60.0]), "linkage"),
     (lambda d: d["counterweights"].__setitem__("distance_mm", [-60.0, 60.0, 60.0]), "counterweights"),
+    (lambda d: d["pin"].__setitem__("stock_lengths_mm", [18.0, 20.0, 22.0]), "pin.stock_lengths_mm"),
+    (lambda d: d["base"].__setitem__("foot_diameter_mm", 12.0), "base.foot_diameter_mm"),
+    (lambda d: d["counterweights"]["slugs"].__setitem__("lengths_mm", []), "counterweights.slugs.lengths_mm"),
 ])
 def test_bad_input_exits_2_with_the_key(tmp_path, capsys, edit, key):
     d = yaml.safe_load(FIXED.read_text())

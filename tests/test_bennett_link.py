@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from partgen.export.kit import printed
-from partgen.geometry.bennett_link import _place, distal_axis, skew_link
+from partgen.geometry.bennett_link import place_on_axis, distal_axis, skew_link
 from partgen.geometry.measure import intersection
 from partgen.geometry.parts import Part
 from partgen.testing import mesh_problems
@@ -16,7 +16,7 @@ A, ALPHA = 50.0, math.radians(30)
 
 
 def pin(point, direction, radius, length=40.0):
-    return _place(m3d.Manifold.cylinder(length, radius, -1.0, 48, True), np.asarray(point, float),
+    return place_on_axis(m3d.Manifold.cylinder(length, radius, -1.0, 48, True), np.asarray(point, float),
                   np.asarray(direction, float), 0.0)
 
 

@@ -7,7 +7,7 @@ import manifold3d as m3d
 import numpy as np
 import pytest
 
-from partgen.geometry.printing import (bed_contact_area, best_orientation, bore_open, overhang_area,
+from partgen.geometry.printing import (bed_contact_area, best_orientation, bore_open, footprint, overhang_area,
                                        rotation_between, shells)
 from partgen.geometry.solid import mesh_arrays
 
@@ -99,3 +99,17 @@ def test_rotation_between():
         assert np.allclose(R @ R.T, np.eye(3), atol=1e-12) and np.linalg.det(R) == pytest.approx(1.0)
     R = rotation_between((0, 0, 1.0), (0, 0, -1.0))
     assert np.allclose(R @ (0, 0, 1.0), (0, 0, -1.0)) and np.linalg.det(R) == pytest.approx(1.0)
+
+
+def test_footprint_of_a_stand():
+    """A post on a disc foot: the footprint is the foot's disc; a centre 10 mm off the axis is
+    r − 10 from its edge."""
+    foot = m3d.Manifold.cylinder(4.0, 40.0, -1.0, 128)
+    post = m3d.Manifold.cylinder(60.0, 8.0, -1.0, 64)
+    v, f = arrays(foot + post)
+    fp = footprint(v, f)
+    area = 0.5 * 128 * 40.0 ** 2 * math.sin(2 * math.pi / 128)  # the 128-gon
+    assert fp.area == pytest.approx(area, rel=1e-9)
+    from shapely.geometry import Point
+    assert fp.exterior.distance(Point(10.0, 0.0)) == pytest.approx(40.0 * math.cos(math.pi / 128) - 10.0, abs=0.05)
+    assert footprint(*arrays(m3d.Manifold.sphere(10.0, 64))).area == 0.0

@@ -27,15 +27,16 @@ from ..geometry.mass import printed_mass
 from ..geometry.parts import Part
 from ..geometry.printing import best_orientation
 from ..geometry.solid import mesh_arrays
-from .bennett_layout import (Sweep, choose_offsets, coarse_samples, link_capsules, part_reach, point_speed,
-                             search_layout, shape_samples, sweep_clearance)
+from .bennett_layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
+                             part_reach, point_speed, search_layout, shape_samples, sweep_clearance)
 from .bennett_parts import (BASE, Fill, Layout, base_features, choose_fill, cw_nominal, default_layout, home_inputs,
                             link_features, print_settings, stack)
 
 __all__ = ["BennettKit", "LinkMass", "PrintPose", "build_bennett", "com_deviation", "fill_points", "grid",
            # the layout and the parts, for the checks and the tests
            "BASE", "Layout", "Sweep", "choose_offsets", "coarse_samples", "default_layout", "home_inputs",
-           "link_capsules", "link_features", "part_reach", "point_speed", "shape_samples", "stack", "sweep_clearance"]
+           "link_capsules", "link_features", "own_clearance", "part_capsules", "part_reach", "point_speed", "shape_samples",
+           "stack", "sweep_clearance"]
 
 
 @dataclass(frozen=True)

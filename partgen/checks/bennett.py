@@ -180,6 +180,13 @@ def _check_pins(kit: A.BennettKit, res: Result) -> None:
             res.add(Finding("pins", "fail", f"pin {j} ({st.length:g} mm) is not held over its length: "
                             + ", ".join(f"{_name(i)} leaves {100 * x:.0f} % of its span around it open"
                                         for i, x in short.items() if x > 0.01), (f"pin_{j}",), value=max(short.values())))
+    for i in range(1, 13):  # a pin runs through every boss of its stack: nothing else of a link may be in its way
+        ends, radii, tags = A.part_capsules(p, kit.layout, kit.bodies, i, kit.pockets)
+        room, what = A.own_clearance(p, kit.layout, kit.bodies, i, ends, radii, tags)
+        if room < 0:
+            res.add(Finding("pins", "fail", f"{_name(i)}: {what} are {-room:.2f} mm too close (pins need "
+                            f"{p.printer.min_wall if p.printer else 1.0:g} mm of wall between their bores and a pin's "
+                            "whole length clear of the link's other features)", (_name(i),), value=room, unit="mm"))
     counts: dict[float, int] = {}
     for v in lengths.values():
         counts[v] = counts.get(v, 0) + 1
