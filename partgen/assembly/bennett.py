@@ -29,8 +29,8 @@ from ..geometry.printing import best_orientation
 from ..geometry.solid import mesh_arrays
 from .bennett_layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
                              part_reach, point_speed, search_layout, shape_samples, sweep_clearance)
-from .bennett_parts import (BASE, Fill, Layout, base_features, choose_fill, cw_nominal, default_layout, home_inputs,
-                            link_features, print_settings, stack)
+from .bennett_parts import (BASE, Fill, Layout, base_features, choose_fill, cup_of, cw_nominal, default_layout,
+                            home_inputs, link_features, print_settings, stack)
 
 __all__ = ["BennettKit", "LinkMass", "PrintPose", "build_bennett", "com_deviation", "fill_points", "grid",
            # the layout and the parts, for the checks and the tests
@@ -233,6 +233,15 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     return _build(p, lay2 if sized2 > sized else lay, say, figures, cache)
 
 
+def _cup_solid(cup: Cup) -> tuple[float, np.ndarray]:
+    """Volume (mm³) and centroid (3,) of a cup as a solid: its cylinder less its pocket."""
+    axis = np.asarray(cup.axis, float) / np.linalg.norm(cup.axis)
+    base = np.asarray(cup.point, float)
+    vc, vp = math.pi * cup.outer_radius ** 2 * cup.height, math.pi * cup.pocket_radius ** 2 * cup.pocket_depth
+    cc, cp = base + axis * cup.height / 2, base + axis * (cup.height - cup.pocket_depth / 2)
+    return vc - vp, (vc * cc - vp * cp) / (vc - vp)
+
+
 def _print_pose(solid: m3d.Manifold, p: BennettParams) -> tuple[PrintPose, np.ndarray]:
     """The orientation with the least support among the part's flat faces (``best_orientation``),
     bed at z = 0; and print_from_body (3, 4)."""
@@ -293,7 +302,19 @@ def _build(p: BennettParams, lay: Layout, say, figures: dict, cache: dict, round
     masses, _, _ = bbf.solve_counterweights(P, m, c, list(nominal.items()))
     fills = {i: choose_fill(p, float(x)) for i, x in zip(p.cw_links, masses)}
     at = [(i, nominal[i], fills[i].mass) for i in p.cw_links]
-    d, _ = bbf.solve_offsets(P, m, c, at)
+    # the first placement: each link with its guessed cup swapped for the one its fill needs (as
+    # printed plastic at the cups' centres) and that cup moving with the pocket
+    m0, c0, moving = dict(m), dict(c), {}
+    for i in p.cw_links:
+        b = links[i]
+        ratio = b.mass.fdm_mass / b.mass.solid_mass
+        real = cup_of(fills[i], np.asarray(b.cup.pocket_centre), np.asarray(b.cup.axis, float), p.cw_wall)
+        (vg, cg), (vr, cr) = _cup_solid(b.cup), _cup_solid(real)
+        mom = m0[i] * c0[i] + p.density * ratio * (vr * cr - vg * cg)
+        m0[i] = m0[i] + p.density * ratio * (vr - vg)
+        c0[i] = mom / m0[i]
+        moving[i] = (b.moving * ratio + p.density * ratio * (vr - vg), np.zeros(3))
+    d, _ = bbf.solve_offsets(P, m0, c0, at, moving)
     delta = {i: d[k] for k, i in enumerate(p.cw_links)}
     history = []
     for rnd in range(rounds):

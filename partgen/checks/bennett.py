@@ -18,13 +18,12 @@ from __future__ import annotations
 
 import math
 
-import manifold3d as m3d
 import numpy as np
 from shapely.geometry import Point
 
 from ..assembly import bennett as A
 from ..design import bennett_butterfly as bbf
-from ..geometry.bennett_link import place_on_axis
+from ..geometry.bennett_link import tube
 from ..geometry.measure import intersection, oversize
 from ..geometry.printing import bore_open, footprint, shells
 from ..geometry.solid import mesh_arrays
@@ -171,9 +170,7 @@ def _check_pins(kit: A.BennettKit, res: Result) -> None:
         for i, (a, b) in st.spans.items():
             pt, ax = (np.zeros(3), np.array([0.0, 0, 1])) if i == A.BASE else kit.bodies[i][j]
             # a ring just outside the bore over the boss's span: the member's solid must fill it
-            ring = (place_on_axis(m3d.Manifold.cylinder(b - a, p.bore_radius + 1.0, -1.0, 32, True), pt, ax, (a + b) / 2)
-                    - place_on_axis(m3d.Manifold.cylinder(b - a + 2, p.bore_radius + 0.05, -1.0, 32, True), pt, ax,
-                                    (a + b) / 2))
+            ring = tube(pt, ax, p.bore_radius + 0.05, p.bore_radius + 1.0, a, b, 32)
             full = ring.volume()
             short[i] = 1.0 - (kit.solids[i] ^ ring).volume() / full
         if st.pin != (min(a for a, _ in st.spans.values()), max(b for _, b in st.spans.values())) or max(short.values()) > 0.01:
@@ -260,7 +257,7 @@ def _check_stacks(kit: A.BennettKit, frames: dict, angles: np.ndarray, res: Resu
         near = {}
         for i in st.members:
             pt, ax = (np.zeros(3), np.array([0.0, 0, 1])) if i == A.BASE else kit.bodies[i][j]
-            zone = place_on_axis(m3d.Manifold.cylinder(hi - lo + 2 * reach, reach, -1.0, 32, True), pt, ax, (lo + hi) / 2)
+            zone = tube(pt, ax, 0.0, reach, lo - reach, hi + reach, 32)
             near[i] = kit.solids[i] ^ zone
         for a, b in ((x, y) for x in st.members for y in st.members if x < y):
             for k in range(len(angles)):

@@ -19,7 +19,7 @@ import numpy as np
 from .printing import rotation_between
 
 __all__ = ["skew_link", "distal_axis", "place_on_axis", "Boss", "Bar", "Cup", "Column", "link_solid", "base_solid", "capsules",
-           "cylinder_capsules", "pin_solid"]
+           "cylinder_capsules", "tube", "pin_solid"]
 
 
 def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
@@ -188,6 +188,16 @@ def base_solid(columns: list[Column], bore: tuple[float, float, float], segments
     r, z0, z1 = bore
     cut = m3d.Manifold.cylinder(z1 - z0 + 0.4, r, -1.0, segments, False).translate((0, 0, z0))
     return m3d.Manifold.batch_boolean(add, m3d.OpType.Add) - cut
+
+
+def tube(point, axis, r_in: float, r_out: float, start: float, end: float, segments: int = 48) -> m3d.Manifold:
+    """A tube (r_in = 0: a rod) on the line (point, axis) from ``start`` to ``end`` mm along it."""
+    pt, ax = np.asarray(point, float), np.asarray(axis, float)
+    out = place_on_axis(m3d.Manifold.cylinder(end - start, r_out, -1.0, segments, True), pt, ax, (start + end) / 2)
+    if r_in <= 0:
+        return out
+    return out - place_on_axis(m3d.Manifold.cylinder(end - start + 2, r_in, -1.0, segments, True), pt, ax,
+                               (start + end) / 2)
 
 
 def pin_solid(length: float, radius: float, segments: int = 48) -> m3d.Manifold:
