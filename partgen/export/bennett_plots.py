@@ -15,6 +15,7 @@ import numpy as np  # noqa: E402
 
 from ..design import bennett_butterfly as bbf  # noqa: E402
 from ..design.balanced import LINKS  # noqa: E402
+from .render import view_matrix  # noqa: E402
 
 __all__ = ["poses_figure", "com_figure"]
 
@@ -38,35 +39,33 @@ def _png(fig) -> bytes:
 
 def poses_figure(bb: bbf.BennettButterfly, angles_deg: list[float], com: list[np.ndarray] | None = None) -> bytes:
     """Rows: the planar form (all twists 0) from above, the spatial form from above, the spatial form
-    in perspective; one column per angle between links 1 and 4. PNG bytes."""
+    seen from the side (elevation 25°, azimuth −60°: projected with ``render.view_matrix``, drawn
+    in 2-D); one column per angle between links 1 and 4. PNG bytes."""
     flat = dataclasses.replace(bb, alpha=0.0, beta=0.0)
     n = len(angles_deg)
-    fig = plt.figure(figsize=(4.2 * n, 12))
+    view = view_matrix(25.0, -60.0)
+    fig, axes = plt.subplots(3, n, figsize=(4.2 * n, 12), squeeze=False)
     for c, ang in enumerate(angles_deg):
         q1, q4 = 0.0, -math.radians(ang)
         for r, (form, persp) in enumerate(((flat, False), (bb, False), (bb, True))):
             P = bbf.pose(form, q1, q4)
             pts = {k: v[0] for k, v in P.points.items()}
-            ax = fig.add_subplot(3, n, r * n + c + 1, projection="3d" if persp else None)
+            if persp:
+                pts = {k: view @ v for k, v in pts.items()}
+            ax = axes[r, c]
             for i, line in _segments(pts):
                 col = COLOURS.get(i, "#f58518" if i in (2, 3, 5, 6) else "#54a24b")
-                if persp:
-                    ax.plot(line[:, 0], line[:, 1], line[:, 2], "-o", color=col, lw=2.5, ms=3)
-                else:
-                    ax.plot(line[:, 0], line[:, 1], "-o", color=col, lw=2.5, ms=3)
-                    mid = line.mean(axis=0)
-                    ax.annotate(str(i), mid[:2], fontsize=7, color="k")
+                ax.plot(line[:, 0], line[:, 1], "-o", color=col, lw=2.5, ms=3)
+                if not persp:
+                    ax.annotate(str(i), line.mean(axis=0)[:2], fontsize=7, color="k")
             if persp:
                 for j, (_, g, at) in bbf.JOINTS.items():  # joint axes as short ticks
-                    p0, d = pts[at], P.axis[g][0] * 25
-                    ax.plot(*np.stack([p0 - d, p0 + d]).T, color="0.5", lw=0.8)
-                ax.view_init(elev=25, azim=-60)
-                ax.set_box_aspect((1, 1, 0.6))
-            else:
-                ax.plot(0, 0, "k*", ms=12)
-                ax.set_aspect("equal")
-                ax.grid(alpha=0.3)
-            title = ("planar form (twists 0)", "spatial form from above", "spatial form, joint axes grey")[r]
+                    p0, d = pts[at], view @ (P.axis[g][0] * 25)
+                    ax.plot(*np.stack([p0 - d, p0 + d])[:, :2].T, color="0.5", lw=0.8)
+            ax.plot(0, 0, "k*", ms=12)
+            ax.set_aspect("equal")
+            ax.grid(alpha=0.3)
+            title = ("planar form (twists 0)", "spatial form from above", "spatial form from the side, joint axes grey")[r]
             ax.set_title(f"{title}\n{ang:.0f}° between links 1 and 4", fontsize=9)
     fig.suptitle("the balanced butterfly at a few poses (q1 = 0; S marked ★ at the origin)")
     return _png(fig)
