@@ -101,15 +101,17 @@ def own_clearance(p: BennettParams, lay: Layout, bodies: dict, link: int, ends: 
         lo, hi = stack(p, lay, j).pin
         seg[j] = (pt + lo * ax, pt + hi * ax)
     # every pair of pins, and every pin against every feature that is not its own boss's
-    rows = [(f"pins {a} and {b}", seg[a], seg[b], 2 * p.bore_radius + wall)
-            for x, a in enumerate(joints) for b in joints[x + 1:]]
-    rows += [(f"pin {j} and a {t[0]}", seg[j], ends[k], p.bore_radius + radii[k])
-             for j in joints for k, t in enumerate(tags) if t[0] != "pin" and j not in t[1:]]
-    a0, a1 = np.array([r[1][0] for r in rows]), np.array([r[1][1] for r in rows])
-    b0, b1 = np.array([r[2][0] for r in rows]), np.array([r[2][1] for r in rows])
-    g = segment_distance(a0, a1, b0, b1) - np.array([r[3] for r in rows])
+    pairs = [(a, b) for x, a in enumerate(joints) for b in joints[x + 1:]]
+    other = [(j, k) for j in joints for k, t in enumerate(tags) if t[0] != "pin" and j not in t[1:]]
+    s0 = np.array([seg[a] for a, _ in pairs] + [seg[j] for j, _ in other]).reshape(-1, 2, 3)
+    s1 = np.concatenate([np.array([seg[b] for _, b in pairs]).reshape(-1, 2, 3),
+                         ends[[k for _, k in other]].reshape(-1, 2, 3)])
+    need = np.concatenate([np.full(len(pairs), 2 * p.bore_radius + wall), p.bore_radius + radii[[k for _, k in other]]])
+    g = segment_distance(s0[:, 0], s0[:, 1], s1[:, 0], s1[:, 1]) - need
     k = int(np.argmin(g))
-    return float(g[k]), rows[k][0]
+    what = f"pins {pairs[k][0]} and {pairs[k][1]}" if k < len(pairs) else \
+        f"pin {other[k - len(pairs)][0]} and a {tags[other[k - len(pairs)][1]][0]}"
+    return float(g[k]), what
 
 
 def shape_samples(p: BennettParams, lo: float, hi: float, speed: float) -> tuple[np.ndarray, float]:
@@ -210,11 +212,12 @@ class Sweep:
         (13, 13): the part pairs with any capsule pair not exempt."""
         A = [caps[a] for a in rows]
         # parts whose bounding spheres never come within ``below`` of a row part's need no capsule work
+        centre = np.stack([caps[k].centre for k in range(13)])  # (13, n, 3)
+        radius = np.array([caps[k].radius for k in range(13)])
+        gap = (np.sqrt(((centre[rows][:, None] - centre[None]) ** 2).sum(-1)).min(axis=2)
+               - radius[rows][:, None] - radius[None])
         far = np.ones((13, 13), bool)
-        for a in rows:
-            for b in np.flatnonzero(need[a]):
-                gap = np.linalg.norm(caps[a].centre - caps[b].centre, axis=1) - caps[a].radius - caps[b].radius
-                far[a, b] = gap.min() >= below
+        far[rows] = gap >= below
         cols = [b for b in range(13) if any(need[a, b] and not far[a, b] for a in rows)]
         need = need & ~far
         B = [caps[b] for b in cols]
