@@ -8,11 +8,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from .assembly import bennett as A
 from .config.bennett import resolve_bennett
 from .config.loader import LoadedDesign, read_yaml
+from .config.yamlio import dump_yaml
 from .errors import ConfigError, DesignError
 
 __all__ = ["BennettLoaded", "build_bennett_kit", "check_bennett_design", "bill", "report_bennett"]
@@ -75,8 +75,7 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
     data = read_yaml(raw.path)
     data["printer"] = "printer.yaml"
     data.setdefault("parts", {})["layout"] = layout_yaml(kit)
-    dump = lambda d: yaml.safe_dump(d, sort_keys=False, allow_unicode=True).encode()  # noqa: E731
-    files = {"design.yaml": dump(data), "printer.yaml": dump(read_yaml(raw.printer_path))}
+    files = {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
     design = {"name": p.name, "kind": "bennett_butterfly", "config": raw.path.name,
               "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha),
               "beta_deg": math.degrees(p.bb.beta),
@@ -87,9 +86,8 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
                                  for i in p.cw_links},
               "bill": bill(kit), "infill_percent": 100 * p.infill, **{k: v for k, v in kit.figures.items()
                                                                      if k not in ("pocket_offsets_mm",)}}
-    dest = Path(dest) if dest is not None else Path("out") / p.name
     man = write_kit(kit, dest, design, files, progress=progress)
-    return loaded, kit, man, dest
+    return loaded, kit, man, dest.dest
 
 
 def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
@@ -182,7 +180,7 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
                         f'<figure>{R.img(top_png, "kit from above")}<figcaption>from above</figcaption></figure></div>'),
                 ("Balance", balance), ("Interference", interference),
                 ("Bill of parts", R.table(["part", "layer", "kind", "solid g", "printed g", "fill g", "pins g"], rows))]
-    out = Path(dest) if dest else Path("out") / p.name / "report"
-    with atomic_dir(out) as tmp:
+    out = dest.dest
+    with atomic_dir(dest) as tmp:
         (tmp / "index.html").write_text(R.page(f"partgen report: {p.name}", sections, raw.path.name), encoding="utf-8")
     return out
