@@ -122,20 +122,29 @@ def run_case(main, cfg: Path, out: Path, seconds: float) -> dict:
             "message": text.strip().splitlines()[-1][:300] if text.strip() else ""}
 
 
-def worker(configs: list[Path], seed: int, budget: float, case_seconds: float, limit: int | None) -> None:
-    from partgen.cli.main import main
-
+def all_cases(configs: list[Path], seed: int) -> list[tuple[Path, str, str, dict]]:
+    """Every mutation of every config, in one seeded order."""
     cases = []
     for cfg in configs:
         design = yaml.safe_load(cfg.read_text(encoding="utf-8"))
         cases += [(cfg, kind, key, t) for kind, key, t in mutations(design)]
     random.Random(seed).shuffle(cases)
+    return cases
+
+
+def worker(configs: list[Path], seed: int, budget: float, case_seconds: float, limit: int | None,
+           only: set[int] | None = None) -> None:
+    from partgen.cli.main import main
+
+    cases = all_cases(configs, seed)
     if limit:
         cases = cases[:limit]
     t_end = time.perf_counter() + budget
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         for i, (cfg, kind, key, t) in enumerate(cases):
+            if only is not None and i not in only:
+                continue
             if time.perf_counter() > t_end:
                 break
             folder = tmp / f"c{i}"
@@ -160,6 +169,8 @@ if __name__ == "__main__":
     ap.add_argument("--budget", type=float, default=60.0, help="seconds for the whole run")
     ap.add_argument("--case-seconds", type=float, default=60.0, help="a case taking longer is a hang")
     ap.add_argument("--limit", type=int, default=None, help="at most this many cases")
+    ap.add_argument("--only", type=Path, default=None, help="a file of case indices (one per line) to run")
     a = ap.parse_args()
-    worker(a.configs, a.seed, a.budget, a.case_seconds, a.limit)
+    only = {int(x) for x in a.only.read_text().split()} if a.only else None
+    worker(a.configs, a.seed, a.budget, a.case_seconds, a.limit, only)
     sys.exit(0)
