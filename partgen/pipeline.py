@@ -151,7 +151,7 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
     from .checks.findings import Finding
     from .checks.run import check_kit
     from .export.kit import atomic_dir, group_parts, printed
-    from .export.plates import plate_meshes, write_plate_3mf
+    from .export.plates import plate_3mf
 
     target = Path(target)
     kit_dir = target if target.is_dir() else None
@@ -186,8 +186,11 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
         meshes = {g[0].part.name: g[0].mesh for g in groups}
         folder = claim.dest
         with atomic_dir(claim) as tmp:
-            for i, parts in enumerate(plate_meshes(lay, meshes), 1):
-                (tmp / f"plate{i}.3mf").write_bytes(write_plate_3mf(parts))
+            pr, n = loaded.params.printer, len(lay.plates)
+            for i, plate in enumerate(lay.plates, 1):
+                (tmp / f"plate{i}.3mf").write_bytes(plate_3mf(plate, meshes, loaded.params.name, loaded.params.material,
+                                                              f"build plate {i} of {n} for the {pr.name} "
+                                                              f"({lay.size[0]:g} x {lay.size[1]:g} mm)"))
             picture(tmp / "plates.png")
     return loaded, kit, result, folder
 
@@ -204,7 +207,7 @@ def plan_plates(loaded: Loaded, groups, result):
     try:
         lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
     except ValueError as e:
-        result.add(Finding("printability", "fail", f"build plates: {e}"))
+        result.add(Finding("printability", "fail", f"build plates: {e}", getattr(e, "parts", ())))
         return None, None
     result.figures["plates"] = len(lay.plates)
 
