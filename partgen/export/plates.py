@@ -271,21 +271,31 @@ def best_turn(points: np.ndarray, plate_xy: tuple[float, float], grow: float = 0
 def _turns(hull: np.ndarray, W: float, H: float, grow: float, angles: int, free: bool) -> list[float]:
     """The turns (rad) a part tries, in order: its own pose's ``angles`` even turns, then, if
     ``free``, the quarter turns of its minimum-area rectangle (long side along x) and, if none of
-    those fits, the turn with the most room and its quarter turns."""
+    those fits, the quarter turns of the turn with the most room, preceded by those of the
+    nearest turn that puts the rectangle's long side along one of the ``_K`` packing directions
+    (its packing polygon then hugs its long sides: see the module), if that one fits too."""
     out = [2 * math.pi * m / angles for m in range(angles)]
     if not free:
         return out
-    rect = np.asarray(shapely.oriented_envelope(shapely.linestrings(hull)).exterior.coords)
+    env = shapely.oriented_envelope(shapely.linestrings(hull))
+    rect = np.asarray(env.exterior.coords) if env.geom_type == "Polygon" else np.empty((0, 2))
+    base = 0.0
     if len(rect) >= 4:
         e = np.diff(rect[:3], axis=0)
         d = e[int(np.argmax(np.hypot(e[:, 0], e[:, 1])))]
         base = -math.atan2(d[1], d[0])
         out += [(base + k * math.pi / 2) % (2 * math.pi) for k in range(4)]
-    ext = [np.ptp(hull @ _rot2(a).T, axis=0) + 2 * grow for a in out]
-    if not any(w <= W + _FIT_TOL and h <= H + _FIT_TOL for w, h in ext):
+
+    def fits(a: float) -> bool:
+        w, h = np.ptp(hull @ _rot2(a).T, axis=0) + 2 * grow
+        return w <= W + _FIT_TOL and h <= H + _FIT_TOL
+
+    if not any(fits(a) for a in out):
         t, room = best_turn(hull, (W, H), grow)
         if room >= -_FIT_TOL:
-            out += [(t + k * math.pi / 2) % (2 * math.pi) for k in range(4)]
+            snap = base + round((t - base) / _DELTA) * _DELTA
+            for a in ([snap] if fits(snap) else []) + [t]:
+                out += [(a + k * math.pi / 2) % (2 * math.pi) for k in range(4)]
     return out
 
 
