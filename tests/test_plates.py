@@ -260,6 +260,21 @@ def test_3mf_holds_each_part_once_with_its_copies_as_items(items, layouts):
             assert t[2, 2] == 1.0 and t[2, 3] == 0.0
 
 
+def test_3mf_reloads_with_trimesh(items, layouts):
+    """Another reader (trimesh, with lxml): one geometry per distinct part, one node per copy."""
+    pytest.importorskip("lxml", reason="trimesh reads 3MF only with lxml installed")
+    meshes = {name: mesh for name, mesh, _ in items}
+    plate = layouts[SMALL].plates[0]
+    scene = trimesh.load(io.BytesIO(P.plate_3mf(plate, meshes, "butterfly")), file_type="3mf")
+    assert isinstance(scene, trimesh.Scene)
+    assert sorted(scene.geometry) == sorted({p.name for p in plate})
+    placed = scene.dump()
+    assert len(placed) == len(plate)
+    assert sum(g.volume for g in placed) == pytest.approx(sum(meshes[p.name].volume for p in plate), rel=1e-6)
+    moved = trimesh.util.concatenate([m for _, m in P.plate_meshes(P.Layout((plate,), SMALL), meshes)[0]])
+    assert np.allclose(trimesh.util.concatenate(placed).bounds, moved.bounds, atol=1e-4)
+
+
 def test_3mf_is_much_smaller_than_a_mesh_per_copy(items, layouts):
     """Seven M4s and four legs on one plate: one mesh each, not one per copy."""
     meshes = {name: mesh for name, mesh, _ in items}
@@ -318,7 +333,8 @@ def test_written_plates_match_the_manifest(checked_kits, design):
         footprints = []
         for oid, t, pn in back["items"]:
             copies[objs[oid]["name"]] += 1
-            v = objs[oid]["vertices"] @ t[:3, :3].T + t[:3, 3]
+            # the vertices are float32 decimals (the STL's precision): read them as float32
+            v = objs[oid]["vertices"].astype(np.float32).astype(float) @ t[:3, :3].T + t[:3, 3]
             assert v[:, 2].min() == pytest.approx(0.0, abs=1e-9)  # still on the bed
             footprints.append((pn, _hull(v)))
         bed = box(-1e-6, -1e-6, W + 1e-6, H + 1e-6)
