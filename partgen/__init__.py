@@ -9,8 +9,16 @@ The layers underneath (config, design, geometry, assembly, checks, export) can b
 own; ``partgen.testing`` measures printed meshes for your own CI gates.
 """
 
-from .errors import ConfigError, DesignError, PartgenError
-from .pipeline import build, check, load, report, trace_design
+from .errors import ConfigError, DesignError, MeshError, OptionError, PartgenError
 
-__all__ = ["build", "check", "load", "report", "trace_design", "PartgenError", "ConfigError", "DesignError"]
+__all__ = ["build", "check", "load", "report", "trace_design", "PartgenError", "ConfigError", "OptionError",
+           "DesignError", "MeshError", "__version__"]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str):
+    """The pipeline's functions, imported on first use (it loads the geometry kernel)."""
+    if name in ("build", "check", "load", "report", "trace_design"):
+        from . import pipeline
+        return getattr(pipeline, name)
+    raise AttributeError(f"module 'partgen' has no attribute {name!r}")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["PartgenError", "ConfigError", "DesignError"]
+__all__ = ["PartgenError", "ConfigError", "OptionError", "DesignError", "MeshError"]
 
 
 class PartgenError(Exception):
@@ -18,6 +18,15 @@ class ConfigError(PartgenError):
         super().__init__(f"{where}: {problem}")
 
 
+class OptionError(PartgenError):
+    """Bad input on the command line: names the option (``-o``, ``--samples``), the value given and
+    the problem."""
+
+    def __init__(self, option: str, value: str, problem: str):
+        self.option, self.value, self.problem = option, str(value), problem
+        super().__init__(f"{option} {self.value}: {problem}" if self.value else f"{option}: {problem}")
+
+
 class DesignError(PartgenError):
     """A design that cannot be built (no teeth give a ratio, an idler cannot reach).
 
@@ -27,3 +36,8 @@ class DesignError(PartgenError):
     def __init__(self, problem: str, key_path: str = ""):
         self.key_path, self.problem = key_path, problem
         super().__init__(f"{key_path}: {problem}" if key_path else problem)
+
+
+class MeshError(RuntimeError):
+    """partgen made a part whose mesh is not one closed, oriented shell: a bug, not the user's input
+    (exit 3). The message names the part and the design; the part is never written."""

@@ -12,16 +12,17 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from .assembly.kit import Kit, build_kit
 from .config.loader import load_design, read_yaml
+from .config.yamlio import dump_yaml
 from .config.resolve import resolve
 from .design.drivetrain import Finding
 from .design.mechanism import KitParams, Mechanism, synthesize
 from .errors import ConfigError, DesignError
 from .export.kit import write_kit
-from .geometry.measure import oversize
+from .export.outputs import claim_output
+from .geometry.measure import empty_parts, oversize
 
 __all__ = ["Loaded", "load", "build", "design_summary", "oversize_parts"]
 
@@ -41,7 +42,10 @@ def load(path: str | Path) -> Loaded:
     try:
         mech = synthesize(inputs, params)
     except DesignError as e:
-        raise ConfigError(loaded.path, e.key_path, e.problem) from None
+        key = e.key_path
+        if inputs.source == "curve" and key.startswith("links"):  # a curve design has no link table
+            key = "curve"
+        raise ConfigError(loaded.path, key, e.problem) from None
     return Loaded(loaded.path, mech, params, loaded.printer_path)
 
 
@@ -96,19 +100,30 @@ def finding_dict(f: Finding) -> dict:
     return {"severity": f.severity, "code": f.code, "key": f.key_path, "message": f.message}
 
 
-def build(path: str | Path, dest: str | Path | None = None, progress=None) -> tuple[Loaded, Kit, dict, Path]:
+def output_claim(raw, dest, kind: str, default_sub: str | None, option: str, notify=None):
+    """Claim the output folder of a command before any work: ``dest`` or out/<name>[/<sub>]."""
+    if dest is None:
+        dest = Path("out") / raw.design.name / default_sub if default_sub else Path("out") / raw.design.name
+    return claim_output(dest, kind, option, (raw.path, raw.printer_path), notify)
+
+
+def build(path: str | Path, dest: str | Path | None = None, progress=None, notify=None) -> tuple[Loaded, Kit, dict, Path]:
     """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made."""
     raw = load_design(path)
+    claim = output_claim(raw, dest, "kit", None, "-o", notify)
     if raw.design.__class__.__name__ == "WristDesign":
-        return build_wrist_kit(raw, dest, progress)
+        return build_wrist_kit(raw, claim, progress)
     if raw.design.__class__.__name__ == "BennettDesign":
         from .pipeline_bennett import build_bennett_kit
-        return build_bennett_kit(raw, dest, progress)
+        return build_bennett_kit(raw, claim, progress)
     loaded = load(path)
     try:
         kit = build_kit(loaded.mechanism, loaded.params, progress)
     except DesignError as e:
         raise ConfigError(loaded.path, e.key_path, e.problem) from None
+    for part in empty_parts(kit.parts):
+        raise ConfigError(loaded.path, _size_key(kit, part.name), f"part {part.name} comes out empty: a size in the "
+                          "design leaves it no material")
     big = oversize_parts(kit)
     if big:
         name, key, ext = big[0]
@@ -116,9 +131,8 @@ def build(path: str | Path, dest: str | Path | None = None, progress=None) -> tu
         raise ConfigError(loaded.path, key, f"part {name} measures {' × '.join(f'{x:.1f}' for x in ext[::-1])} mm "
                           f"and does not fit the printer's {env} mm envelope in any orientation"
                           + (f" (and {len(big) - 1} more parts)" if len(big) > 1 else ""))
-    dest = Path(dest) if dest is not None else Path("out") / loaded.params.name
-    man = write_kit(kit, dest, design_summary(loaded, kit), design_files(loaded), progress=progress)
-    return loaded, kit, man, dest
+    man = write_kit(kit, claim, design_summary(loaded, kit), design_files(loaded), progress=progress)
+    return loaded, kit, man, claim.dest
 
 
 def design_files(loaded: Loaded) -> dict[str, bytes]:
@@ -126,23 +140,26 @@ def design_files(loaded: Loaded) -> dict[str, bytes]:
     re-derive the kit): design.yaml names printer.yaml beside it."""
     data = read_yaml(loaded.path)
     data["printer"] = "printer.yaml"
-    dump = lambda d: yaml.safe_dump(d, sort_keys=False, allow_unicode=True).encode()  # noqa: E731
-    return {"design.yaml": dump(data), "printer.yaml": dump(read_yaml(loaded.printer_path))}
+    return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(loaded.printer_path))}
 
 
 def check(target: str | Path, samples: int | None = None, progress=None, plates_dir: str | Path | None = None,
-          write_plates: bool = True):
+          write_plates: bool = True, notify=None):
     """Check a design (CONFIG) or a built kit (KITDIR, re-derived from its design.yaml and compared
     byte for byte). Lays the parts out on build plates and writes a 3MF and a picture per plate.
     Returns (Loaded, Kit, Result, plates folder or None)."""
     from .checks.findings import Finding
     from .checks.run import check_kit
     from .export.kit import atomic_dir, group_parts, printed
-    from .export.plates import plate_meshes, write_plate_3mf
+    from .export.plates import plate_3mf
 
     target = Path(target)
     kit_dir = target if target.is_dir() else None
     raw = load_design(target / "design.yaml" if kit_dir else target)
+    claim = None
+    if write_plates and raw.design.__class__.__name__ not in ("WristDesign", "BennettDesign"):
+        claim = output_claim(raw, Path(plates_dir) if plates_dir else (kit_dir / "plates" if kit_dir else None),
+                             "plates", "plates", "--plates", notify)
     if raw.design.__class__.__name__ == "WristDesign":
         return check_wrist_design(raw, progress)
     if raw.design.__class__.__name__ == "BennettDesign":
@@ -165,12 +182,15 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
                                tuple(s[:-4] for s in stale)))
     lay, picture = plan_plates(loaded, groups, result)
     folder = None
-    if lay is not None and write_plates:
+    if lay is not None and claim is not None:
         meshes = {g[0].part.name: g[0].mesh for g in groups}
-        folder = Path(plates_dir) if plates_dir else (kit_dir or Path("out") / loaded.params.name) / "plates"
-        with atomic_dir(folder) as tmp:
-            for i, parts in enumerate(plate_meshes(lay, meshes), 1):
-                (tmp / f"plate{i}.3mf").write_bytes(write_plate_3mf(parts))
+        folder = claim.dest
+        with atomic_dir(claim) as tmp:
+            pr, n = loaded.params.printer, len(lay.plates)
+            for i, plate in enumerate(lay.plates, 1):
+                (tmp / f"plate{i}.3mf").write_bytes(plate_3mf(plate, meshes, loaded.params.name, loaded.params.material,
+                                                              f"build plate {i} of {n} for the {pr.name} "
+                                                              f"({lay.size[0]:g} x {lay.size[1]:g} mm)"))
             picture(tmp / "plates.png")
     return loaded, kit, result, folder
 
@@ -187,7 +207,7 @@ def plan_plates(loaded: Loaded, groups, result):
     try:
         lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
     except ValueError as e:
-        result.add(Finding("printability", "fail", f"build plates: {e}"))
+        result.add(Finding("printability", "fail", f"build plates: {e}", getattr(e, "parts", ())))
         return None, None
     result.figures["plates"] = len(lay.plates)
 
@@ -207,6 +227,8 @@ def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | 
     from .export.trace_plots import trace_animation, trace_figure
 
     raw = load_design(path)
+    if plots_dir is not False:
+        plots_dir = output_claim(raw, plots_dir, "trace", "trace", "--plots")
     if raw.design.__class__.__name__ == "WristDesign":
         return trace_wrist(raw, plots_dir)
     if raw.design.__class__.__name__ == "BennettDesign":
@@ -226,8 +248,8 @@ def trace_design(path: str | Path, samples: int = 3600, plots_dir: str | Path | 
         stats["pruned_vs_full"] = deviation(targets["pruned"], targets["full"], theta).to_dict()
     folder = None
     if plots_dir is not False:
-        folder = Path(plots_dir) if plots_dir else Path("out") / loaded.params.name / "trace"
-        with atomic_dir(folder) as tmp:
+        folder = plots_dir.dest
+        with atomic_dir(plots_dir) as tmp:
             head = {k: v for k, v in stats.items() if k.endswith("_mm")} or \
                 {k: v for k, v in stats["vs_pruned"].items() if k.endswith("_mm")}
             if "worst_theta_rad" in stats:
@@ -253,6 +275,7 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
 
     say = progress or (lambda step: None)
     raw = load_design(path)
+    dest = output_claim(raw, dest, "report", "report", "-o")
     if raw.design.__class__.__name__ == "WristDesign":
         return report_wrist(raw, dest, say)
     if raw.design.__class__.__name__ == "BennettDesign":
@@ -347,8 +370,8 @@ def report(path: str | Path, dest: str | Path | None = None, samples: int | None
                   + (f"<figure>{R.img(plates_png, 'build plates')}</figure>" if plates_png else ""))
     sections = [("Design", design), ("Bill of parts", parts_html), ("Stacking", stack_html), ("Trace", trace_html),
                 ("Check", check_html)]
-    out = Path(dest) if dest else Path("out") / params.name / "report"
-    with atomic_dir(out) as tmp:
+    out = dest.dest
+    with atomic_dir(dest) as tmp:
         (tmp / "index.html").write_text(R.page(f"partgen report: {params.name}", sections,
                                                f"{loaded.path.name} — {mech.stages and len(mech.chain.links)} links"),
                                         encoding="utf-8")
@@ -373,9 +396,8 @@ def build_wrist_kit(raw, dest=None, progress=None):
     loaded = Loaded(raw.path, None, kit.params, raw.printer_path)
     design = {"name": spec.name, "kind": "wrist", "config": raw.path.name, "nominal_ratio": spec.I,
               "centre_distance_mm": spec.A, "longitudinal_pitch_mm": spec.long_pitch, **kit.figures}
-    dest = Path(dest) if dest is not None else Path("out") / spec.name
     man = write_kit(kit, dest, design, design_files(loaded), progress=progress)
-    return loaded, kit, man, dest
+    return loaded, kit, man, dest.dest
 
 def check_wrist_design(raw, progress=None):
     """`partgen check` of a wrist pair: the workspace sweep, engagement and play."""
@@ -413,8 +435,9 @@ def trace_wrist(raw, plots_dir=None):
                        "lat_pitch_off": round(r.lat_pitch_1 / spec.long_pitch - 1, 5) if r.k else None} for r in pair.rows]}
     folder = None
     if plots_dir is not False:
-        folder = Path(plots_dir) if plots_dir else Path("out") / spec.name / "trace"
-        with atomic_dir(folder) as tmp:
+        claim = atomic_dir(plots_dir, "trace", "--plots")
+        folder = claim.dest
+        with claim as tmp:
             wrist_figure(spec.I, spec.A, theta_max, pair.rows, tmp / "wrist.png", tmp / "wrist.svg",
                          f"{spec.name}: I = {spec.I:g}, centre distance {spec.A:g} mm")
     from .assembly.wrist import WristParams
@@ -474,7 +497,7 @@ def report_wrist(raw, dest=None, say=lambda step: None) -> Path:
                   "beside the contact, and near the pole the contact tooth sits on that axis.</p>")
     sections = [("Design", design), ("Math", R.img(math_png, "ratio, mating angle, meridians")),
                 ("Parts", f'<div class="grid">{"".join(pics)}</div>'), ("Check", check_html)]
-    out = Path(dest) if dest else Path("out") / spec.name / "report"
-    with atomic_dir(out) as tmp:
+    out = dest.dest
+    with atomic_dir(dest) as tmp:
         (tmp / "index.html").write_text(R.page(f"partgen report: {spec.name}", sections, raw.path.name), encoding="utf-8")
     return out

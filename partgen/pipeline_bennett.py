@@ -8,11 +8,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from .assembly import bennett as A
 from .config.bennett import resolve_bennett
 from .config.loader import LoadedDesign, read_yaml
+from .config.yamlio import dump_yaml
 from .errors import ConfigError, DesignError
 
 __all__ = ["BennettLoaded", "build_bennett_kit", "check_bennett_design", "bill", "bought", "report_bennett",
@@ -131,11 +131,9 @@ def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
     data = read_yaml(raw.path)
     data["printer"] = "printer.yaml"
     data.setdefault("parts", {})["layout"] = layout_yaml(kit)
-    dump = lambda d: yaml.safe_dump(d, sort_keys=False, allow_unicode=True).encode()  # noqa: E731
-    files = {"design.yaml": dump(data), "printer.yaml": dump(read_yaml(raw.printer_path))}
-    dest = Path(dest) if dest is not None else Path("out") / p.name
+    files = {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
     man = write_kit(kit, dest, _design(kit, raw), files, progress=progress)
-    return loaded, kit, man, dest
+    return loaded, kit, man, dest.dest
 
 
 def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
@@ -296,7 +294,7 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
                  + R.table(["part", "layer", "solid g", "printed g", "fill g", "pins g", "support mm²", "on bed mm²",
                             "height mm"], rows)),
                 ("Bought parts", R.table(["item", "quantity", "for", "g"], buy))]
-    out = Path(dest) if dest else Path("out") / p.name / "report"
-    with atomic_dir(out) as tmp:
+    out = dest.dest
+    with atomic_dir(dest) as tmp:
         (tmp / "index.html").write_text(R.page(f"partgen report: {p.name}", sections, raw.path.name), encoding="utf-8")
     return out

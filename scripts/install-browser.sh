@@ -10,6 +10,16 @@ if [ "$(id -u)" != 0 ]; then
   exit 0
 fi
 export DEBIAN_FRONTEND=noninteractive
-apt-get update -qq >/dev/null
-apt-get install -y -qq --no-install-recommends chromium fonts-dejavu-core >/dev/null
+# another apt (unattended upgrades at boot) may hold the dpkg or lists lock: wait for it, don't fail
+lock=(-o DPkg::Lock::Timeout=600 -o Acquire::Retries=3)
+retry() {
+  for i in $(seq 1 30); do
+    "$@" && return 0
+    echo "install-browser: apt is busy or failed; retrying in 20 s ($i/30)" >&2
+    sleep 20
+  done
+  return 1
+}
+retry apt-get "${lock[@]}" update -qq >/dev/null
+retry apt-get "${lock[@]}" install -y -qq --no-install-recommends chromium fonts-dejavu-core >/dev/null
 command -v chromium

@@ -148,7 +148,7 @@ def test_report_page(tmp_path):
 def test_bad_input_exits_2_with_the_key(tmp_path, capsys, edit, key):
     d = yaml.safe_load(FIXED.read_text())
     edit(d)
-    d["printer"] = str(ROOT / "tests" / "designs" / "printers" / "fortus450mc.yaml")
+    d["printer"] = "fortus450mc"
     cfg = tmp_path / "bad.yaml"
     cfg.write_text(yaml.safe_dump(d))
     out = tmp_path / "out"

@@ -33,7 +33,8 @@ def test_manifest_agrees_with_the_files(kit, built_kits):
     on_disk = json.loads((folder / "manifest.json").read_text())
     assert on_disk == man
     files = {p.name for p in folder.iterdir()}
-    assert files == {p["file"] for p in man["parts"]} | {"manifest.json", "assembly.glb", "design.yaml", "printer.yaml"}
+    assert files == {p["file"] for p in man["parts"]} | {"manifest.json", "assembly.glb", "design.yaml", "printer.yaml",
+                         ".partgen"}
     for p in man["parts"]:
         mesh = load_stl(folder, p["file"])
         assert p["triangles"] == len(mesh.faces)

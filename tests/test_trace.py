@@ -14,7 +14,6 @@ from partgen.design.synthesis import trace
 from partgen.design.trace import built_chain, built_speeds, deviation, hausdorff, target_paths
 
 ROOT = Path(__file__).parent.parent
-PRINTER = ROOT / "configs" / "printers" / "fortus450mc.yaml"
 
 
 def load(name):
@@ -47,7 +46,7 @@ def test_off_ratio_teeth_bend_the_curve(tmp_path):
     """One G with a tooth too many: fractional link speeds, a path that does not close, and a
     curve several mm off the design's."""
     d = yaml.safe_load((ROOT / "configs" / "butterfly_liu2017.yaml").read_text())
-    d["printer"] = str(PRINTER)
+    d["printer"] = "fortus450mc"
     d["teeth"][1]["G"] = 19  # Eq 11 wants 36/18
     cfg = tmp_path / "off.yaml"
     cfg.write_text(yaml.safe_dump(d))

@@ -183,7 +183,7 @@ def test_cross_gear_bad_teeth_is_a_config_error(tmp_path, capsys):
 
     from partgen.cli.main import main
     d = yaml.safe_load((ROOT / "configs" / "wrist_sphere.yaml").read_text())
-    d["printer"] = str(ROOT / "configs" / "printers" / "fortus450mc.yaml")
+    d["printer"] = "fortus450mc"
     d["wrist"]["cross_gear"]["teeth"] = 22
     cfg = tmp_path / "bad.yaml"
     cfg.write_text(yaml.safe_dump(d))

@@ -29,6 +29,8 @@ CRANK_THICKNESS = 6.0
 HANDLE_R, HANDLE_LEN = 5.0, 30.0
 LEG_R = 8.0
 PEN_WALL = 2.0
+PEN_FLOOR = 2.0  # mm of solid under the pen in its holder
+MIN_AXLE = 2 * (P.FLAT_DEPTH + 1.0)  # mm: a D-flat 1 mm deep with 1 mm of axle left past it
 
 
 @dataclass(frozen=True)
@@ -116,6 +118,9 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     ``clock_error`` (name -> rad) makes fixed gears with their teeth turned that far off the
     clocking the mesh needs, as a badly made part would be: for fault studies."""
     say = progress or (lambda name: None)
+    if params.joints.axle_diameter < MIN_AXLE:
+        raise DesignError(f"{params.joints.axle_diameter:g} mm leaves no room for the D-flats that fix gears and plates "
+                          f"(a flat {P.FLAT_DEPTH:g} mm deep): use at least {MIN_AXLE:g} mm", "joints.axle_diameter_mm")
     st = Stack(params.joints.axial_gap, params.face_width, params.plate_thickness)
     g, f, t = st.gap, st.face, st.plate
     tol = params.system.chord_tolerance
@@ -185,6 +190,9 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
                        ("width_mm", prof.width))))
 
     # link plates
+    if params.pen_holder_height < PEN_FLOOR + 1.0:
+        raise DesignError(f"{params.pen_holder_height:g} mm leaves no bore above the holder's {PEN_FLOOR:g} mm floor: "
+                          f"make it at least {PEN_FLOOR + 1.0:g} mm", "pen.holder_height_mm")
     pen_spigot = DFit(params.pen_diameter / 2 + PEN_WALL, jn.press_clearance)
     prox_r = rb + jn.press_clearance / 2 + params.boss_wall
     for j, link in enumerate(mech.chain.links, 1):
@@ -241,7 +249,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
                                        HANDLE_LEN, FEATURE_TOL), print_flip=True))
     add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
-                                                      params.pen_diameter / 2 + 0.1, 2.0, FEATURE_TOL),
+                                                      params.pen_diameter / 2 + 0.1, PEN_FLOOR, FEATURE_TOL),
              print_flip=True))
 
     contacts = _contacts(mech, params, st, len(legs))

@@ -35,15 +35,14 @@ def check_printability(kit: Kit, geo: dict[str, PartGeometry], extents: dict[str
     """``extents``: name -> (3,) printed extents of each distinct part."""
     pr = kit.params.printer
     findings, figures = [], {"smallest_hole_mm": np.inf, "thinnest_wall_mm": np.inf, "narrowest_tip_mm": np.inf}
-    ex, ey, ez = (float(v) for v in pr.envelope)
+    ez = float(pr.envelope[2])
     for name, ext in extents.items():
-        # in its print orientation: its height under the envelope's, its footprint (turned about z
-        # as the plate layout may) inside the plate
+        # in its print orientation its height must be under the envelope's; whether its footprint fits
+        # the bed (turned freely about z) is the plate layout's test (export.plates), which names it
         x, y, z = (float(v) for v in ext)
-        if z > ez + 1e-9 or not ((x <= ex + 1e-9 and y <= ey + 1e-9) or (y <= ex + 1e-9 and x <= ey + 1e-9)):
+        if z > ez + 1e-9:
             findings.append(Finding("printability", "fail", f"{name} ({' × '.join(f'{v:.1f}' for v in ext)} mm as printed) "
-                                    f"does not fit the {pr.name} envelope {' × '.join(f'{v:g}' for v in pr.envelope)} mm",
-                                    (name,), None, float(np.max(ext)), "mm"))
+                                    f"is taller than the {pr.name}'s {ez:g} mm build height", (name,), None, z, "mm"))
         hole, wall = np.inf, np.inf
         for s in geo[name].slabs:
             h, w = features(s.shape)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .. import pipeline
+from .common import note, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -15,6 +15,7 @@ def add_parser(sub) -> None:
     p.add_argument("config", help="design YAML (configs/butterfly.yaml)")
     p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress")
+    p.add_argument("--json", action="store_true", help="print one JSON object (ok, kit folder, parts) and nothing else")
     p.set_defaults(run=run)
 
 
@@ -35,10 +36,20 @@ class Progress:
 
 
 def run(args) -> int:
+    from .. import pipeline
+
     t0 = time.perf_counter()
-    progress = Progress(args.quiet)
-    loaded, kit, man, dest = pipeline.build(args.config, args.out, progress)
+    progress = Progress(args.quiet or args.json)
+    loaded, kit, man, dest = pipeline.build(args.config, args.out, progress, note)
     progress.done()
+    if args.json:
+        findings = [{"severity": f.severity, "key": f.key_path, "message": f.message}
+                    for f in getattr(loaded.mechanism, "findings", ())]
+        print_json({"ok": True, "kit": str(dest), "design": man["design"].get("name", loaded.params.name),
+                    "parts": [{k: p[k] for k in ("name", "role", "count", "file", "volume_mm3", "mass_g")}
+                              for p in man["parts"]], "findings": findings,
+                    "seconds": round(time.perf_counter() - t0, 3)})
+        return 0
     mech = loaded.mechanism
     if getattr(loaded, "kind", "") == "bennett_butterfly":
         print(bennett_table(man, dest, time.perf_counter() - t0))

@@ -4,12 +4,11 @@ Exit 0 when every check holds, 1 when one fails, 2 for bad input."""
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 import time
 
-from .. import pipeline
+from .common import bounded_int, note, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -17,7 +16,8 @@ __all__ = ["add_parser", "run"]
 def add_parser(sub) -> None:
     p = sub.add_parser("check", help="check a design or a built kit over its whole motion")
     p.add_argument("target", help="design YAML, or a kit folder written by `partgen build`")
-    p.add_argument("--samples", type=int, default=None, help="crank angles over one cycle (default: the config's checks.samples)")
+    p.add_argument("--samples", type=bounded_int(4, 10_000), default=None,
+                   help="crank angles over one cycle, 4 to 10,000 (default: the config's checks.samples)")
     p.add_argument("--json", action="store_true", help="print one JSON object (ok, findings, figures) and nothing else")
     p.add_argument("--plates", default=None, help="folder for the build plates (default: <kit>/plates)")
     p.add_argument("--no-plates", action="store_true", help="lay out the build plates but write nothing")
@@ -105,31 +105,18 @@ def _table(loaded, result, folder, seconds: float) -> str:
     return "\n".join(lines)
 
 
-def _json_safe(v):
-    if isinstance(v, dict):
-        return {k: _json_safe(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_json_safe(x) for x in v]
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    if hasattr(v, "item"):
-        return _json_safe(v.item())
-    return v
-
-
 def run(args) -> int:
+    from .. import pipeline
+
     t0 = time.perf_counter()
-    if args.samples is not None and args.samples < 4:
-        print("partgen: error: --samples: must be at least 4", file=sys.stderr)
-        return 2
     loaded, kit, result, folder = pipeline.check(args.target, args.samples, Bar(not args.json), args.plates,
-                                                 not args.no_plates)
+                                                 not args.no_plates, note)
     seconds = time.perf_counter() - t0
     if args.json:
         out = {"ok": result.ok, "design": loaded.params.name, "config": str(loaded.path),
                "findings": [f.to_dict() for f in result.findings], "figures": result.figures,
                "plates_dir": str(folder) if folder else None, "seconds": round(seconds, 3)}
-        print(json.dumps(_json_safe(out), indent=1))
+        print_json(out)
     else:
         print(_table(loaded, result, folder, seconds))
     return 0 if result.ok else 1

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .. import pipeline
+from .common import bounded_int, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -14,13 +14,16 @@ def add_parser(sub) -> None:
     p = sub.add_parser("report", help="write DIR/index.html: design, parts, stacking, trace, check, plates")
     p.add_argument("config", help="design YAML")
     p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/report)")
-    p.add_argument("--samples", type=int, default=None, help="crank angles for the check")
+    p.add_argument("--samples", type=bounded_int(4, 10_000), default=None, help="crank angles for the check")
+    p.add_argument("--json", action="store_true", help="print one JSON object (ok, report path) and nothing else")
     p.set_defaults(run=run)
 
 
 def run(args) -> int:
+    from .. import pipeline
+
     t0 = time.perf_counter()
-    tty = sys.stderr.isatty()
+    tty = sys.stderr.isatty() and not args.json
 
     def say(step):
         if tty:
@@ -28,5 +31,8 @@ def run(args) -> int:
     out = pipeline.report(args.config, args.out, args.samples, say)
     if tty:
         print("\r" + " " * 30 + "\r", end="", file=sys.stderr)
-    print(f"wrote {out}/index.html in {time.perf_counter() - t0:.1f} s")
+    if args.json:
+        print_json({"ok": True, "report": str(out / "index.html"), "seconds": round(time.perf_counter() - t0, 3)})
+    else:
+        print(f"wrote {out}/index.html in {time.perf_counter() - t0:.1f} s")
     return 0

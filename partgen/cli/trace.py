@@ -2,12 +2,9 @@
 
 from __future__ import annotations
 
-import json
-import sys
+from .common import bounded_int, print_json
 
-import numpy as np
-
-from .. import pipeline
+CSV_HEADER = "theta_rad,x_mm,y_mm\n"
 
 __all__ = ["add_parser", "run"]
 
@@ -17,21 +14,25 @@ def add_parser(sub) -> None:
     p.add_argument("config", help="design YAML")
     p.add_argument("--csv", default=None, help="write the path: theta_rad, x_mm, y_mm")
     p.add_argument("--json", action="store_true", help="print one JSON object and nothing else")
-    p.add_argument("--samples", type=int, default=3600, help="crank angles over one turn [3600]")
+    p.add_argument("--samples", type=bounded_int(16, 36_000), default=3600, help="crank angles over one turn, 16 to 36,000 [3600]")
     p.add_argument("--plots", default=None, help="folder for trace.png/.svg/.gif (default out/<name>/trace)")
     p.add_argument("--no-plots", action="store_true")
     p.set_defaults(run=run)
 
 
 def run(args) -> int:
-    if args.samples < 16:
-        print("partgen: error: --samples: must be at least 16", file=sys.stderr)
-        return 2
+    import numpy as np
+
+    from .. import pipeline
+    from ..export.outputs import check_text_target, write_text_file
+
+    if args.csv:
+        check_text_target(args.csv, "--csv", CSV_HEADER, (args.config,))
     loaded, theta, pen, stats, folder = pipeline.trace_design(args.config, args.samples,
                                                               False if args.no_plots else args.plots)
     if stats.get("kind") == "wrist":
         if args.json:
-            print(json.dumps({"design": loaded.params.name, **stats, "plots_dir": str(folder) if folder else None}, indent=1))
+            print_json({"ok": True, "design": loaded.params.name, **stats, "plots_dir": str(folder) if folder else None})
             return 0
         print(f"{loaded.params.name}: I = {stats['nominal_ratio']:g}; valid range θ ≤ {stats['valid_end_deg']:.3f}° "
               f"(φ reaches 90°); workspace θ ≤ {stats['workspace_theta_max_deg']:.3f}°")
@@ -45,13 +46,10 @@ def run(args) -> int:
         return 0
     if args.csv:
         rows = np.column_stack([theta, pen.real, pen.imag])
-        with open(args.csv, "w", encoding="utf-8") as f:
-            f.write("theta_rad,x_mm,y_mm\n")
-            for t, x, y in rows:
-                f.write(f"{t:.9f},{x:.6f},{y:.6f}\n")
+        write_text_file(args.csv, CSV_HEADER + "".join(f"{t:.9f},{x:.6f},{y:.6f}\n" for t, x, y in rows), "--csv",
+                        (args.config,))
     if args.json:
-        out = {"design": loaded.params.name, **stats, "plots_dir": str(folder) if folder else None}
-        print(json.dumps(out, indent=1))
+        print_json({"ok": True, "design": loaded.params.name, **stats, "plots_dir": str(folder) if folder else None})
         return 0
     name = loaded.params.name
     print(f"{name}: pen over one crank turn, {args.samples} samples; link speeds as built {', '.join(stats['speeds'])}"

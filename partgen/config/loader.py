@@ -4,17 +4,22 @@ naming the file, the key path and the problem."""
 from __future__ import annotations
 
 import difflib
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
-import yaml
 from pydantic import BaseModel, ValidationError
 
 from ..errors import ConfigError
 from .schema import BennettDesign, Design, Printer, WristDesign
+from .yamlio import read_yaml_file
 
-__all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path"]
+__all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path", "PRINTERS_DIR", "shipped_printers",
+           "printer_path", "KINDS"]
+
+PRINTERS_DIR = Path(__file__).resolve().parent.parent / "printers"
+KINDS = {"gear_chain": Design, "wrist": WristDesign, "bennett_butterfly": BennettDesign}
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -28,24 +33,16 @@ class LoadedDesign:
 
 
 def read_yaml(path: Path) -> dict:
-    """The YAML mapping in ``path``; ConfigError for a missing file, bad syntax or a non-mapping."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ConfigError(path, "", "no such file") from None
-    except (OSError, UnicodeDecodeError) as e:
-        raise ConfigError(path, "", f"cannot read: {e}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as e:
-        mark = getattr(e, "problem_mark", None)
-        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-        problem = getattr(e, "problem", None) or str(e).splitlines()[0]
-        raise ConfigError(path, "", f"invalid YAML{where}: {problem}") from None
+    """The YAML mapping in ``path``; ConfigError for a missing or unreadable file, bad syntax, a
+    duplicate key or a non-mapping (see ``yamlio``)."""
+    data = read_yaml_file(Path(path))
     if data is None:
         raise ConfigError(path, "", "the file is empty: expected a mapping of design keys")
     if not isinstance(data, dict):
         raise ConfigError(path, "", f"expected a mapping of keys at the top level, got a {type(data).__name__}")
+    bad = [k for k in data if not isinstance(k, str)]
+    if bad:
+        raise ConfigError(path, str(bad[0]), "keys at the top level are names (text)")
     return data
 
 
@@ -108,14 +105,53 @@ def validate(model: type[M], data: dict, path: Path) -> M:
         raise ConfigError(path, key, problem) from None
 
 
+def shipped_printers() -> list[str]:
+    """Names of the printer profiles partgen ships (``printer: <name>``)."""
+    return sorted(p.stem for p in PRINTERS_DIR.glob("*.yaml"))
+
+
+def printer_path(value: str, design: Path, key: str = "printer", folders=()) -> Path:
+    """The profile a design's ``printer`` names: a shipped name (``prusa_mk4``) or a ``.yaml`` path
+    relative to the design that stays inside the design's folder (or one of ``folders``, which the
+    user named on the command line). Nothing outside is ever opened."""
+    if re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.-]*", value) and not value.endswith((".yaml", ".yml")):
+        path = PRINTERS_DIR / f"{value}.yaml"
+        if not path.is_file():
+            names = shipped_printers()
+            close = difflib.get_close_matches(value, names, n=1, cutoff=0.6)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise ConfigError(design, key, f"no shipped printer named {value!r}{hint} (shipped: {', '.join(names)}; "
+                              "or give a .yaml profile beside the design)")
+        return path
+    if not value.endswith((".yaml", ".yml")):
+        raise ConfigError(design, key, f"{value!r} is neither a shipped printer name nor a .yaml profile")
+    given = Path(value)
+    base = design.resolve().parent
+    path = (base / given).resolve()
+    roots = [base, PRINTERS_DIR, *(Path(f).resolve() for f in folders)]
+    if not any(path == r or r in path.parents for r in roots):
+        raise ConfigError(design, key, f"{value!r} lies outside the design's folder: a design reads only a shipped "
+                          "printer (by name) or a profile in its own folder (or give --printer FILE)")
+    if not path.is_file():
+        raise ConfigError(design, key, f"no printer profile at {value!r} (looked for {path})")
+    return path
+
+
 def load_design(path: str | Path) -> LoadedDesign:
     """Design and printer profile of a design file; the printer path is relative to the design."""
     path = Path(path)
     data = read_yaml(path)
-    kinds = {"wrist": WristDesign, "bennett_butterfly": BennettDesign}
-    design = validate(kinds.get(data.get("kind"), Design), data, path)
-    printer_path = (path.parent / design.printer).resolve()
-    if not printer_path.is_file():
-        raise ConfigError(path, "printer", f"no printer profile at {design.printer!r} (looked for {printer_path})")
-    printer = validate(Printer, read_yaml(printer_path), printer_path)
-    return LoadedDesign(path, design, printer_path, printer)
+    kind = data.get("kind")
+    if not isinstance(kind, str) or kind not in KINDS:
+        names = ", ".join(KINDS)
+        if kind is None:
+            raise ConfigError(path, "kind", f"required key is missing: say which mechanism this is ({names})")
+        if not isinstance(kind, str):
+            raise ConfigError(path, "kind", f"should be one of {names}, got a {type(kind).__name__}")
+        close = difflib.get_close_matches(kind, list(KINDS), n=1, cutoff=0.6)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        raise ConfigError(path, "kind", f"unknown mechanism {str(kind)[:40]!r}: {hint}(kinds: {names})")
+    design = validate(KINDS[kind], data, path)
+    ppath = printer_path(design.printer, path)
+    printer = validate(Printer, read_yaml(ppath), ppath)
+    return LoadedDesign(path, design, ppath, printer)

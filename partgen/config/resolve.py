@@ -45,10 +45,30 @@ def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]
     return Chain(links, complex(*d.offset_mm)), None, 1.0, ()
 
 
+def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
+    """Refuse, before any geometry, links no plate of this printer can span and chains whose links
+    all fall under the printer's smallest link (a curve at a scale that makes it vanish)."""
+    d, p = loaded.design, loaded.printer
+    reach = math.hypot(*p.build_envelope_mm)
+    longest = max(l.length for l in chain.links)
+    for j, l in enumerate(chain.links):
+        if l.length > reach:
+            key = "curve.scale_mm_per_unit" if d.curve is not None else f"links[{j}].length_mm"
+            raise ConfigError(loaded.path, key, f"link {j + 1} ({l.name}) comes out {l.length:.1f} mm long: no plate "
+                              f"that long fits the printer's {' × '.join(f'{x:g}' for x in p.build_envelope_mm)} mm "
+                              "envelope")
+    if d.curve is not None and longest < p.min_link_length_mm:
+        need = d.curve.scale_mm_per_unit * p.min_link_length_mm / longest
+        raise ConfigError(loaded.path, "curve.scale_mm_per_unit",
+                          f"at {d.curve.scale_mm_per_unit:g} mm per unit the longest link is {longest:.3f} mm, under "
+                          f"the printer's smallest link ({p.min_link_length_mm:g} mm): use at least {need:.3g} mm per unit")
+
+
 def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     """The mechanism inputs and kit parameters of a loaded design (mm, rad)."""
     d, p = loaded.design, loaded.printer
     chain, fc, scale, dropped = _chain(loaded)
+    _sizes(loaded, chain)
     g = d.gears
     system = ToothSystem(
         module=g.module_mm,

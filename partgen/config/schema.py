@@ -8,44 +8,61 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
 
 __all__ = ["Printer", "Design", "WristDesign", "BennettDesign"]
 
-Pos = Annotated[float, Field(gt=0)]
-NonNeg = Annotated[float, Field(ge=0)]
+MAX = 10_000.0  # the largest magnitude any number may have (10 m as a length): larger is a typo, not a design
+Pos = Annotated[float, Field(gt=0, le=MAX)]
+NonNeg = Annotated[float, Field(ge=0, le=MAX)]
+Finite = Annotated[float, Field(ge=-MAX, le=MAX)]
+Length = Annotated[float, Field(ge=0.01, le=MAX)]  # mm: a feature finer than 0.01 mm is no print
+
+
+def _zero_or_at_least(v: float) -> float:
+    if 0 < v < 0.001:
+        raise ValueError(f"must be 0 or at least 0.001 mm (a gap under a micrometre is no gap), got {v!r}")
+    return v
+
+
+Gap = Annotated[float, Field(ge=0, le=MAX), AfterValidator(_zero_or_at_least)]  # mm
+Ratio = Annotated[float, Field(ge=0.01, le=100)]
+Density = Annotated[float, Field(gt=0, le=30)]  # g/cm³ (osmium is 22.6)
 Teeth = Annotated[int, Field(ge=4, le=1000)]
+# a design's name is the default output folder: a plain file name, never a path or an option
+Name = Annotated[str, Field(pattern=r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$", max_length=100)]
+Text = Annotated[str, Field(max_length=10_000)]
 
 
 class Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True)
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
 
 
 class Printer(Strict):
-    name: str
-    build_envelope_mm: Annotated[list[Pos], Field(min_length=3, max_length=3)]
-    resolution_mm: Pos
-    min_hole_diameter_mm: Pos = Field(description="smallest reliable revolute-joint hole")
-    min_gear_diameter_mm: Pos = Field(description="smallest reliable gear (reference pitch diameter)")
-    min_link_length_mm: Pos
-    min_wall_mm: Pos
+    name: Annotated[str, Field(min_length=1, max_length=200)]
+    build_envelope_mm: Annotated[list[Length], Field(min_length=3, max_length=3)]
+    resolution_mm: Length
+    min_hole_diameter_mm: Length = Field(description="smallest reliable revolute-joint hole")
+    min_gear_diameter_mm: Length = Field(description="smallest reliable gear (reference pitch diameter)")
+    min_link_length_mm: Length
+    min_wall_mm: Length
 
 
 class Polar(Strict):
     """ρ(θ) = constant + Σ sin[k]·sin kθ + cos[k]·cos kθ (curve units)."""
 
-    constant: float = 0.0
-    sin: dict[Annotated[int, Field(ge=1, le=64)], float] = {}
-    cos: dict[Annotated[int, Field(ge=1, le=64)], float] = {}
+    constant: Finite = 0.0
+    sin: dict[Annotated[int, Field(ge=1, le=64)], Finite] = {}
+    cos: dict[Annotated[int, Field(ge=1, le=64)], Finite] = {}
 
 
 class Cartesian(Strict):
     """x = Σ a_k cos kθ + b_k sin kθ, y = Σ c_k cos kθ + d_k sin kθ; lists indexed by k from 0."""
 
-    a: list[float]
-    b: list[float]
-    c: list[float]
-    d: list[float]
+    a: Annotated[list[Finite], Field(min_length=1, max_length=65)]
+    b: Annotated[list[Finite], Field(min_length=1, max_length=65)]
+    c: Annotated[list[Finite], Field(min_length=1, max_length=65)]
+    d: Annotated[list[Finite], Field(min_length=1, max_length=65)]
 
     @model_validator(mode="after")
     def _same_length(self):
@@ -57,8 +74,8 @@ class Cartesian(Strict):
 class Curve(Strict):
     polar: Polar | None = None
     cartesian: Cartesian | None = None
-    scale_mm_per_unit: Pos
-    drop_links: list[str] = []
+    scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)]
+    drop_links: Annotated[list[Annotated[str, Field(max_length=40)]], Field(max_length=200)] = []
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -72,7 +89,7 @@ class Target(Strict):
 
     polar: Polar | None = None
     cartesian: Cartesian | None = None
-    scale_mm_per_unit: Pos
+    scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)]
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -82,10 +99,10 @@ class Target(Strict):
 
 
 class LinkRow(Strict):
-    name: str
-    speed: int
-    length_mm: Pos
-    initial_angle_deg: float
+    name: Annotated[str, Field(min_length=1, max_length=40)]
+    speed: Annotated[int, Field(ge=-1000, le=1000)]
+    length_mm: Length
+    initial_angle_deg: Finite
 
     @model_validator(mode="after")
     def _speed(self):
@@ -101,41 +118,41 @@ class StageTeeth(Strict):
     D: Teeth
     M: Teeth
     G: Teeth
-    idler_mm: Annotated[list[float], Field(min_length=2, max_length=2)] | None = None
+    idler_mm: Annotated[list[Finite], Field(min_length=2, max_length=2)] | None = None
 
 
 class Gears(Strict):
-    module_mm: Pos
+    module_mm: Length
     pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     addendum_coeff: Annotated[float, Field(gt=0, le=2)] = 1.0
     dedendum_coeff: Annotated[float, Field(gt=0, le=2.5)] = 1.25
     cutter_tip_radius_coeff: Annotated[float, Field(ge=0, le=0.6)] = 0.38
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1, le=1.5)] = "auto"
-    backlash_per_gear_mm: NonNeg = 0.05
-    face_width_mm: Pos
+    backlash_per_gear_mm: Gap = 0.05
+    face_width_mm: Length
     chord_tolerance_mm: Annotated[float, Field(ge=1e-4, le=0.1)] = 0.001
-    hub_wall_mm: Pos = 3.0
-    tip_gap_mm: NonNeg = 1.5
-    idler_reach_mm: NonNeg = 1.0
+    hub_wall_mm: Length = 2.5
+    tip_gap_mm: Gap = 1.5
+    idler_reach_mm: Gap = 1.0
 
 
 class Drive(Strict):
     teeth: Teeth
-    angle_deg: float = -90.0
+    angle_deg: Finite = -90.0
 
 
 class Plates(Strict):
-    thickness_mm: Pos
-    boss_wall_mm: Pos = 4.0
+    thickness_mm: Length
+    boss_wall_mm: Length = 4.0
 
 
 class Joints(Strict):
-    axle_diameter_mm: Pos
-    running_clearance_radial_mm: float | None = None
-    running_clearance_diametral_mm: float | None = None
-    press_fit_clearance_radial_mm: float | None = None
-    press_fit_clearance_diametral_mm: float | None = None
-    axial_gap_mm: Pos = 0.5
+    axle_diameter_mm: Length
+    running_clearance_radial_mm: Finite | None = None
+    running_clearance_diametral_mm: Finite | None = None
+    press_fit_clearance_radial_mm: Finite | None = None
+    press_fit_clearance_diametral_mm: Finite | None = None
+    axial_gap_mm: Length = 0.5
 
     @model_validator(mode="after")
     def _one_each(self):
@@ -157,58 +174,66 @@ class Joints(Strict):
 
 
 class Base(Strict):
-    thickness_mm: Pos = 6.0
-    leg_height_mm: Pos = 45.0
-    crank_radius_mm: Pos = 35.0
+    thickness_mm: Length = 6.0
+    leg_height_mm: Length = 45.0
+    crank_radius_mm: Length = 35.0
 
 
 class Pen(Strict):
-    diameter_mm: Pos = 10.0
-    holder_height_mm: Pos = 20.0
+    diameter_mm: Length = 10.0
+    holder_height_mm: Length = 20.0
 
 
 class Belts(Strict):
     """Timing belts instead of idler gears: each D_j drives G_{j+1} through a stock closed belt."""
 
-    profile: str = "GT2"
-    pitch_mm: Pos = 2.0
-    pitch_line_offset_mm: NonNeg = 0.254
-    groove_depth_mm: Pos = 0.75
-    groove_radius_mm: Pos = 0.555
-    back_height_mm: Pos = 0.63
-    width_mm: Pos = 6.0
-    stock_teeth: Annotated[list[Annotated[int, Field(ge=20, le=5000)]], Field(min_length=1)]
-    flange_height_mm: Pos = 1.5
-    flange_thickness_mm: Pos = 1.0
-    tensioner_radius_mm: Pos = 7.0
-    tensioner_gap_mm: NonNeg = 0.5
+    profile: Annotated[str, Field(max_length=40)] = "GT2"
+    pitch_mm: Length = 2.0
+    pitch_line_offset_mm: Gap = 0.254
+    groove_depth_mm: Length = 0.75
+    groove_radius_mm: Length = 0.555
+    back_height_mm: Length = 0.63
+    width_mm: Length = 6.0
+    stock_teeth: Annotated[list[Annotated[int, Field(ge=20, le=5000)]], Field(min_length=1, max_length=1000)]
+    flange_height_mm: Length = 1.5
+    flange_thickness_mm: Length = 1.0
+    tensioner_radius_mm: Length = 7.0
+    tensioner_gap_mm: Gap = 0.5
+
+    @model_validator(mode="after")
+    def _pitch_line_in_the_back(self):
+        if self.pitch_line_offset_mm >= self.back_height_mm:
+            raise ValueError(f"pitch_line_offset_mm ({self.pitch_line_offset_mm:g}) must be less than back_height_mm "
+                             f"({self.back_height_mm:g}): the pitch line runs in the belt's tension cords, inside its back")
+        return self
 
 
 class Checks(Strict):
     """What `partgen check` holds a kit to."""
 
-    samples: Annotated[int, Field(ge=4, le=100000)] = 360
+    samples: Annotated[int, Field(ge=4, le=10_000)] = 360
     interference_tolerance_mm3: NonNeg = 0.001
-    min_clearance_mm: NonNeg = 0.3
+    min_clearance_mm: Gap = 0.3
     min_contact_ratio: Pos = 1.2
     min_tip_width_roads: Pos = 3.0
-    plate_margin_mm: NonNeg = 5.0
+    plate_margin_mm: Gap = 5.0
 
 
 class Material(Strict):
-    name: str
-    density_g_cm3: Pos
+    name: Annotated[str, Field(min_length=1, max_length=200)]
+    density_g_cm3: Density
 
 
 class Design(Strict):
-    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
-    description: str = ""
-    printer: str
+    kind: Literal["gear_chain"]
+    name: Name
+    description: Text = ""
+    printer: Annotated[str, Field(min_length=1, max_length=500)]
     curve: Curve | None = None
-    links: list[LinkRow] | None = None
+    links: Annotated[list[LinkRow], Field(max_length=128)] | None = None
     target: Target | None = None
-    offset_mm: Annotated[list[float], Field(min_length=2, max_length=2)] = [0.0, 0.0]
-    teeth: Literal["auto"] | list[StageTeeth]
+    offset_mm: Annotated[list[Finite], Field(min_length=2, max_length=2)] = [0.0, 0.0]
+    teeth: Literal["auto"] | Annotated[list[StageTeeth], Field(max_length=128)]
     gears: Gears
     drive: Drive
     plates: Plates
@@ -232,22 +257,32 @@ class Design(Strict):
 
 class Tooth(Strict):
     shape: Literal["dome"] = "dome"
-    radius_mm: Pos
-    height_mm: Pos
+    radius_mm: Length
+    height_mm: Length
+
+
+MAX_SWEEP_POSES = 2048  # each pose unions every dome into the socket cut: more takes hours
 
 
 class Sweep(Strict):
     theta_steps: Annotated[int, Field(ge=2, le=200)] = 8
     psi_steps: Annotated[int, Field(ge=4, le=720)] = 24
 
+    @model_validator(mode="after")
+    def _budget(self):
+        if self.theta_steps * self.psi_steps > MAX_SWEEP_POSES:
+            raise ValueError(f"{self.theta_steps} × {self.psi_steps} = {self.theta_steps * self.psi_steps} poses: at most "
+                             f"{MAX_SWEEP_POSES} (the default 8 × 24 cuts sockets within 0.01 mm)")
+        return self
+
 
 class CrossGear(Strict):
     """An ABENICS-style cross spherical gear (ring-involute teeth both ways) on a spherical pitch."""
 
     teeth: Annotated[int, Field(ge=8, le=400)]
-    module_mm: Pos
+    module_mm: Length
     pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
-    backlash_per_gear_mm: NonNeg = 0.05
+    backlash_per_gear_mm: Gap = 0.05
 
     @field_validator("teeth")
     @classmethod
@@ -261,25 +296,25 @@ class Wrist(Strict):
     """A spherical (nominal_ratio 1) or quasi-ellipsoidal wrist gear pair."""
 
     nominal_ratio: Annotated[float, Field(gt=0.2, lt=5)]
-    centre_distance_mm: Pos
-    longitudinal_pitch_mm: Pos
-    ring_teeth: Annotated[list[Annotated[int, Field(ge=1, le=200)]], Field(min_length=2)] = [1, 6, 12]
+    centre_distance_mm: Length
+    longitudinal_pitch_mm: Length
+    ring_teeth: Annotated[list[Annotated[int, Field(ge=1, le=200)]], Field(min_length=2, max_length=20)] = [1, 6, 12]
     tooth: Tooth
-    clearance_radial_mm: float
+    clearance_radial_mm: Finite
     max_bend_deg: Annotated[float, Field(gt=0, lt=180)]
     sweep: Sweep = Sweep()
-    shaft_diameter_mm: Pos
-    press_fit_clearance_diametral_mm: float = 0.05
-    base_height_mm: Pos = 8.0
+    shaft_diameter_mm: Length
+    press_fit_clearance_diametral_mm: Finite = 0.05
+    base_height_mm: Length = 8.0
     chord_tolerance_mm: Annotated[float, Field(ge=1e-3, le=0.5)] = 0.02
     cross_gear: CrossGear | None = None
 
 
 class WristDesign(Strict):
     kind: Literal["wrist"]
-    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
-    description: str = ""
-    printer: str
+    name: Name
+    description: Text = ""
+    printer: Annotated[str, Field(min_length=1, max_length=500)]
     wrist: Wrist
     material: Material
 
@@ -287,11 +322,11 @@ class WristDesign(Strict):
 class BennettLinkage(Strict):
     """Bennett 1 (S-B2-D2-B3) and the scales of the four similar Bennetts (van der Wijk 2020)."""
 
-    a_mm: Pos = Field(description="S–B2 and D2–B3")
-    b_mm: Pos = Field(description="B2–D2 and B3–S")
+    a_mm: Length = Field(description="S–B2 and D2–B3")
+    b_mm: Length = Field(description="B2–D2 and B3–S")
     alpha_deg: Annotated[float, Field(gt=0, lt=180)]
     beta_deg: Annotated[float, Field(gt=0, lt=180)] | None = None
-    scales: Annotated[list[Pos], Field(min_length=4, max_length=4)] = [1.0, 0.8, 0.6, 0.7]
+    scales: Annotated[list[Ratio], Field(min_length=4, max_length=4)] = [1.0, 0.8, 0.6, 0.7]
     home_angle_deg: Annotated[float, Field(gt=0, lt=180)] = 77.0
     workspace_deg: Annotated[list[Annotated[float, Field(gt=0, lt=180)]], Field(min_length=2, max_length=2)]
 
@@ -309,18 +344,18 @@ class BennettLayout(Strict):
     """A fixed stack layout (what `partgen build` prints after an automatic one)."""
 
     layers: dict[Annotated[int, Field(ge=1, le=12)], Annotated[int, Field(ge=1, le=20)]]
-    shifts_mm: dict[str, float] = {}
+    shifts_mm: dict[Annotated[str, Field(max_length=40)], Finite] = {}
 
 
 class BennettParts(Strict):
-    bar_diameter_mm: Pos
-    boss_diameter_mm: Pos
-    boss_length_mm: Pos
-    axial_gap_mm: Pos
+    bar_diameter_mm: Length
+    boss_diameter_mm: Length
+    boss_length_mm: Length
+    axial_gap_mm: Length
     layout: Literal["auto"] | BennettLayout = "auto"
     layers: Annotated[int, Field(ge=3, le=12)] = 6
-    offset_step_mm: Pos = 5.0
-    offset_max_mm: NonNeg = 40.0
+    offset_step_mm: Length = 5.0
+    offset_max_mm: Gap = 40.0
     segments: Annotated[int, Field(ge=12, le=256)] = 40
 
 
@@ -331,21 +366,22 @@ DOWEL_LENGTHS_10_MM = [18.0, 20.0, 22.0, 24.0, 26.0, 28.0, 30.0, 32.0, 35.0, 40.
 
 
 class Pin(Strict):
-    kind: str = "steel dowel pin (ISO 2338/8734)"
-    diameter_mm: Pos
-    clearance_diametral_mm: NonNeg
-    density_g_cm3: Pos = 7.85
-    stock_lengths_mm: Annotated[list[Pos], Field(min_length=1)] = Field(
+    kind: Annotated[str, Field(max_length=200)] = "steel dowel pin (ISO 2338/8734)"
+    diameter_mm: Length
+    clearance_diametral_mm: Gap
+    density_g_cm3: Density = 7.85
+    stock_lengths_mm: Annotated[list[Length], Field(min_length=1, max_length=200)] = Field(
         default=DOWEL_LENGTHS_10_MM, description="lengths the pins can be bought in (the stock list for Ø10)")
 
 
 class Slugs(Strict):
     """Stock steel slugs a counterweight pocket holds, stacked end to end in a bore that fits them."""
 
-    kind: str = "steel dowel pin (ISO 8734)"
-    diameter_mm: Pos = 20.0
-    lengths_mm: Annotated[list[Pos], Field(min_length=1)] = [20.0, 25.0, 30.0, 35.0, 40.0, 45.0, 50.0, 60.0]
-    density_g_cm3: Pos = 7.85
+    kind: Annotated[str, Field(max_length=200)] = "steel dowel pin (ISO 8734)"
+    diameter_mm: Length = 20.0
+    lengths_mm: Annotated[list[Length], Field(min_length=1, max_length=200)] = [20.0, 25.0, 30.0, 35.0, 40.0, 45.0,
+                                                                                 50.0, 60.0]
+    density_g_cm3: Density = 7.85
 
 
 class Counterweights(Strict):
@@ -353,41 +389,41 @@ class Counterweights(Strict):
     filling the rest of the pocket to the brim."""
 
     links: Annotated[list[Annotated[int, Field(ge=1, le=12)]], Field(min_length=3, max_length=3)]
-    distance_mm: Annotated[list[float], Field(min_length=3, max_length=3)]
-    wall_mm: Pos
-    clearance_diametral_mm: NonNeg = 0.3
+    distance_mm: Annotated[list[Finite], Field(min_length=3, max_length=3)]
+    wall_mm: Length
+    clearance_diametral_mm: Gap = 0.3
     slugs: Slugs = Slugs()
     binder: Material = Material(name="epoxy", density_g_cm3=1.15)
 
 
 class PrintCfg(Strict):
-    wall_mm: Pos = 1.2
-    skin_mm: Pos = 1.0
+    wall_mm: Length = 1.2
+    skin_mm: Length = 1.0
     infill_percent: Annotated[float, Field(ge=0, le=100)] = 20.0
     overhang_angle_deg: Annotated[float, Field(gt=0, lt=90)] = 45.0
-    min_bed_contact_mm2: Pos = 100.0
+    min_bed_contact_mm2: Annotated[float, Field(gt=0, le=1e6)] = 100.0
 
 
 class BennettBase(Strict):
-    height_mm: Pos = 80.0
-    foot_diameter_mm: Pos = 100.0
-    foot_thickness_mm: Pos = 5.0
+    height_mm: Length = 80.0
+    foot_diameter_mm: Length = 100.0
+    foot_thickness_mm: Length = 5.0
     min_tip_angle_deg: Annotated[float, Field(gt=0, lt=90)] = 10.0
 
 
 class BennettChecks(Strict):
-    balance_tolerance_mm: Pos = 0.1
+    balance_tolerance_mm: Length = 0.1
     grid: Annotated[list[Annotated[int, Field(ge=2, le=400)]], Field(min_length=2, max_length=2)] = [24, 21]
     infill_error_percent_points: NonNeg = 5.0
-    mass_scale: dict[Annotated[int, Field(ge=1, le=12)], Pos] = Field(
+    mass_scale: dict[Annotated[int, Field(ge=1, le=12)], Ratio] = Field(
         default={}, description="what-if: a link's mass times this, counterweights not re-sized (seeded faults)")
 
 
 class BennettDesign(Strict):
     kind: Literal["bennett_butterfly"]
-    name: Annotated[str, Field(pattern=r"^[A-Za-z0-9_.-]+$")]
-    description: str = ""
-    printer: str
+    name: Name
+    description: Text = ""
+    printer: Annotated[str, Field(min_length=1, max_length=500)]
     linkage: BennettLinkage
     parts: BennettParts
     pin: Pin

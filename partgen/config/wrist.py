@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from ..design.gearing import ToothSystem, make_gear
+from ..design.involute import max_tip_fillet_coeff
 from ..design.mechanism import PrinterLimits
 from ..errors import ConfigError
 from ..design.spherical import WristSpec
@@ -24,7 +25,10 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
             raise ConfigError(loaded.path, "wrist.cross_gear.module_mm",
                               f"pitch radius m·z/2 = {c.module_mm * c.teeth / 2:g} mm must be the sphere's "
                               f"{w.centre_distance_mm / 2:g} mm (half the centre distance)")
-        cross = make_gear(c.teeth, ToothSystem(module=c.module_mm, pressure_angle=math.radians(c.pressure_angle_deg),
+        alpha = math.radians(c.pressure_angle_deg)
+        # the ISO 53 rack's 0.38 m tip fillet, or the largest that fits a steeper rack (25° takes 0.33)
+        rho = min(0.38, 0.999 * max_tip_fillet_coeff(alpha, 1.25, 0.0))
+        cross = make_gear(c.teeth, ToothSystem(module=c.module_mm, pressure_angle=alpha, cutter_tip_coeff=rho,
                                                profile_shift=0.0, backlash_per_gear=c.backlash_per_gear_mm,
                                                chord_tolerance=max(w.chord_tolerance_mm, 0.01)))
     return WristSpec(

@@ -204,8 +204,12 @@ def design_belt_stage(j: int, length: float, ratio: Fraction, profile: BeltProfi
             circles = [((0.0, 0.0), D.pitch_radius, 1), (pos, r_e, -1), ((length, 0.0), G.pitch_radius, 1)]
             if side > 0:
                 circles = [circles[2], circles[1], circles[0]]
-            return BeltStage(j, length, ratio, D, G, teeth, lo, pos, idler_radius, belt_path(circles)[0], 0.0,
-                             c_free - length)
+            try:
+                path = belt_path(circles)[0]
+            except ValueError as e:
+                raise DesignError(f"link {j} (S = {length:.3f} mm): the belt cannot be routed round its pulleys and "
+                                  f"tensioner ({e}): check the belt profile", "belts") from None
+            return BeltStage(j, length, ratio, D, G, teeth, lo, pos, idler_radius, path, 0.0, c_free - length)
     # no tensioner fits: change the link to the centre distance of the stock belt that needs the
     # smallest change
     best = None

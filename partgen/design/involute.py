@@ -28,6 +28,7 @@ import numpy as np
 
 __all__ = [
     "GearOutline",
+    "max_tip_fillet_coeff",
     "inv",
     "reference_tooth_thickness",
     "tip_diameter",
@@ -301,6 +302,15 @@ class GearOutline:
     root_radius: float
 
 
+def max_tip_fillet_coeff(alpha: float, hf: float, thinning_over_m: float = 0.0) -> float:
+    """The largest tip fillet radius (x module) a basic rack of pressure angle ``alpha`` (rad) and
+    dedendum ``hf`` (x module) can have before the fillets of one cutter tooth overlap, with the
+    tooth thinned by ``thinning_over_m`` (arc at the pitch line / module; see ``_cutter``):
+    rho <= (pi/4 + t/2m - hf tan a) / (1/cos a - tan a)."""
+    ta = math.tan(alpha)
+    return (math.pi / 4.0 + thinning_over_m / 2.0 - hf * ta) / (1.0 / math.cos(alpha) - ta)
+
+
 def _cutter(z, m, alpha, x, thinning, hf, rho):
     """Left tip-fillet of the generating rack tooth that cuts the space above tooth 0.
 
@@ -426,7 +436,7 @@ def gear_outline(z, m, alpha, x=0.0, thinning=0.0, ha=1.0, hf=1.25, rho=0.38, to
     if c - u_c < -1e-12 * m:
         raise ValueError(
             f"rho = {rho!r} is too large for hf = {hf!r}, alpha and thinning = {thinning!r}: "
-            "the cutter's tip fillets overlap")
+            f"the cutter's tip fillets overlap (at most {max_tip_fillet_coeff(alpha, hf, thinning / m):.4f})")
     u_c = min(u_c, c)
     s = reference_tooth_thickness(z, m, alpha, x, thinning)
     psi_b = s / (2.0 * rp) + inv(alpha)  # half angle of the tooth at the base circle

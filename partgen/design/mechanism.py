@@ -18,7 +18,10 @@ from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .synthesis import Chain
 
-__all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
+__all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize",
+           "TRIANGLE_BUDGET", "gear_triangles"]
+
+TRIANGLE_BUDGET = 8_000_000  # triangles of all gear solids of a kit: about 2 GB of meshes while building
 
 
 @dataclass(frozen=True)
@@ -199,15 +202,48 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     distinct = {(g.teeth, g.profile_shift): g for s in stages for g in (s.D, s.M, s.G)}
     for g in distinct.values():
         check_generable(g)
+    _budget([G1, drive] + [g for s in stages for g in (s.D, s.M, s.G)])
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
                      inputs.chain)
+
+
+def gear_triangles(gear: GearSpec) -> int:
+    """Triangles of a gear's toothed prism: its outline's n vertices make 2n side triangles and
+    about 2n in the two caps."""
+    s = gear.system
+    n = len(involute.gear_outline(gear.teeth, s.module, s.pressure_angle, gear.profile_shift, s.backlash_per_gear,
+                                  s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, s.chord_tolerance).points)
+    return 4 * n
+
+
+def _budget(gears: list[GearSpec]) -> None:
+    """Refuse, before any solid is made, gears whose meshes would exceed TRIANGLE_BUDGET."""
+    per = {}
+    total = 0
+    for g in gears:
+        key = (g.teeth, g.profile_shift)
+        if key not in per:
+            per[key] = gear_triangles(g)
+        total += per[key]
+    if total > TRIANGLE_BUDGET:
+        tol = gears[0].system.chord_tolerance
+        need = tol * (total / TRIANGLE_BUDGET) ** 2  # vertices grow as tolerance^-1/2
+        raise DesignError(f"the kit's gears would have {total / 1e6:.1f} million triangles (at most "
+                          f"{TRIANGLE_BUDGET / 1e6:g} million): at a chord tolerance of {tol:g} mm their flanks drive it; "
+                          f"use at least {need:.2g} mm", "gears.chord_tolerance_mm")
 
 
 def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
     """G1 and the drive gear (same teeth: one crank turn per cycle) and where the drive sits."""
     G1 = make_gear(params.drive_teeth, params.system)
     check_generable(G1)
+    if 2 * G1.root_radius < params.min_root_diameter:
+        need = next(z for z in range(params.drive_teeth, 100_000)
+                    if 2 * make_gear(z, params.system).root_radius >= params.min_root_diameter)
+        raise DesignError(f"a {params.drive_teeth}-tooth drive gear and G1 at module {params.system.module:g} mm have a "
+                          f"root circle of Ø{2 * G1.root_radius:.2f} mm, too small for the Ø{params.bore:.2f} mm bore "
+                          f"and {params.hub_wall:g} mm hub wall: give at least {need} teeth", "drive.teeth")
     a = centre_distance(G1, G1)
     return G1, G1, (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
 

@@ -6,9 +6,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
-import shutil
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +15,7 @@ import trimesh
 from ..assembly.kit import Kit
 from ..geometry.parts import Part
 from ..geometry.solid import mesh_arrays
+from .outputs import OutputClaim, atomic_dir
 
 __all__ = ["PrintedPart", "printed", "group_parts", "manifest", "write_kit", "atomic_dir"]
 
@@ -120,38 +118,10 @@ def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] =
     return scene.export(file_type="glb")
 
 
-class atomic_dir:
-    """Context manager: a temporary folder beside ``dest`` that replaces ``dest`` on success and
-    vanishes on failure, so ``dest`` is either the old kit or the whole new one."""
-
-    def __init__(self, dest: Path):
-        self.dest = Path(dest)
-
-    def __enter__(self) -> Path:
-        self.dest.parent.mkdir(parents=True, exist_ok=True)
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.dest.name}.tmp-", dir=self.dest.parent))
-        umask = os.umask(0)  # mkdtemp makes 0700; give the kit the mode a plain mkdir would
-        os.umask(umask)
-        os.chmod(self.tmp, 0o777 & ~umask)
-        return self.tmp
-
-    def __exit__(self, exc_type, exc, tb):
-        if exc_type is not None:
-            shutil.rmtree(self.tmp, ignore_errors=True)
-            return False
-        old = None
-        if self.dest.exists():
-            old = self.dest.parent / f".{self.dest.name}.old-{os.getpid()}"
-            os.replace(self.dest, old)
-        os.replace(self.tmp, self.dest)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
-        return False
-
-
-def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] | None = None,
+def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dict[str, bytes] | None = None,
               progress=None) -> dict:
-    """Write the kit into ``dest`` atomically; returns the manifest."""
+    """Write the kit into ``dest`` (a folder, or an ``OutputClaim`` checked before the build)
+    atomically; returns the manifest."""
     say = progress or (lambda name: None)
     items, done = [], {}
     for p in (p for p in kit.parts if p.printed):
@@ -166,7 +136,7 @@ def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] 
     if bought:
         man["purchased"] = [{"name": p.name, "role": p.role, **dict(p.info)} for p in bought]
     files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
-    files["manifest.json"] = (json.dumps(man, indent=1) + "\n").encode()
+    files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
     files["assembly.glb"] = assembly_glb(kit, groups, bought)
     files.update(extra_files or {})
     with atomic_dir(dest) as tmp:

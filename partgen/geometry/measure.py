@@ -14,7 +14,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from .solid import mesh_arrays
 
-__all__ = ["Slab", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize"]
+__all__ = ["Slab", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts"]
 
 
 @dataclass(frozen=True)
@@ -95,6 +95,11 @@ def from_mesh(vertices: np.ndarray, faces: np.ndarray) -> m3d.Manifold:
     return solid
 
 
+def empty_parts(parts) -> list:
+    """Printed parts whose solid came out empty (a design value left no material)."""
+    return [p for p in parts if p.printed and (p.solid.is_empty() or p.solid.volume() <= 0.0)]
+
+
 def oversize(parts, envelope, tol: float = 1e-9) -> list[tuple[object, np.ndarray]]:
     """Printed parts too big for the printer in any orientation: [(part, its extents sorted (3,) mm)].
     ``parts``: objects with ``.solid`` and ``.printed``; ``envelope``: (3,) mm, any order."""
@@ -104,6 +109,8 @@ def oversize(parts, envelope, tol: float = 1e-9) -> list[tuple[object, np.ndarra
         if not p.printed:
             continue
         v, _ = mesh_arrays(p.solid)
+        if not len(v):
+            continue
         ext = np.sort(v.max(axis=0) - v.min(axis=0))
         if np.any(ext > env + tol):
             out.append((p, ext))

@@ -1,0 +1,5 @@
+"""``python -m partgen``: the command line."""
+
+from .cli.main import entry
+
+entry()
