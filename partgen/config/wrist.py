@@ -16,6 +16,19 @@ __all__ = ["resolve_wrist"]
 
 def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
     d, w, p = loaded.design, loaded.design.wrist, loaded.printer
+    # each gear's pitch surface must hold its shaft with a wall, and a tooth: the smaller radius
+    # is at the pole (i(0) = I, so r1 = A I/(1+I), r2 = A/(1+I))
+    r_min = w.centre_distance_mm * min(w.nominal_ratio, 1.0) / (1.0 + w.nominal_ratio)
+    need = w.shaft_diameter_mm / 2 + 3.0 + w.tooth.radius_mm
+    if r_min < need:
+        raise ConfigError(loaded.path, "wrist.centre_distance_mm",
+                          f"{w.centre_distance_mm:g} mm makes a pitch radius of {r_min:.2f} mm at the pole, too small for "
+                          f"the {w.shaft_diameter_mm:g} mm shaft, a 3 mm wall and a {w.tooth.radius_mm:g} mm tooth: use "
+                          f"at least {w.centre_distance_mm * need / r_min:.1f} mm")
+    reach = max(p.build_envelope_mm)
+    if w.centre_distance_mm > 2 * reach:
+        raise ConfigError(loaded.path, "wrist.centre_distance_mm", f"{w.centre_distance_mm:g} mm makes gears larger than "
+                          f"the printer's {reach:g} mm envelope")
     cross = None
     if w.cross_gear is not None:
         c = w.cross_gear
