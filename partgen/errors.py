@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["PartgenError", "ConfigError", "DesignError"]
+__all__ = ["PartgenError", "ConfigError", "DesignError", "MeshError"]
 
 
 class PartgenError(Exception):
@@ -27,3 +27,8 @@ class DesignError(PartgenError):
     def __init__(self, problem: str, key_path: str = ""):
         self.key_path, self.problem = key_path, problem
         super().__init__(f"{key_path}: {problem}" if key_path else problem)
+
+
+class MeshError(RuntimeError):
+    """A part whose mesh, as written, is not one closed, oriented manifold shell: a bug in partgen
+    (not a user's error, so not a PartgenError), named by part and design."""

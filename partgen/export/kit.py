@@ -17,9 +17,11 @@ import trimesh
 
 from ..assembly.kit import Kit
 from ..geometry.parts import Part
+from ..errors import MeshError
 from ..geometry.solid import mesh_arrays
+from .verify import mesh_report, read_stl
 
-__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "write_kit", "atomic_dir"]
+__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "verify_parts", "write_kit", "atomic_dir"]
 
 FLIP = np.diag([1.0, -1.0, -1.0, 1.0])  # half a turn about x: prints a part upside down
 
@@ -149,9 +151,23 @@ class atomic_dir:
         return False
 
 
+def verify_parts(groups: list[list[PrintedPart]], design_name: str) -> None:
+    """Read every distinct STL back as a slicer does (export.verify) and raise ``MeshError``, naming
+    the design and each bad part, unless every one is a single closed, oriented manifold shell."""
+    bad = []
+    for g in groups:
+        report = mesh_report(*read_stl(g[0].stl))
+        if not report.ok:
+            bad.append(f"{g[0].part.name} ({', '.join(report.problems())})")
+    if bad:
+        raise MeshError(f"design {design_name}: {len(bad)} part(s) would be written as a mesh that is not one closed, "
+                        f"oriented manifold shell: {'; '.join(bad)} — a bug in partgen; nothing was written")
+
+
 def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] | None = None,
               progress=None) -> dict:
-    """Write the kit into ``dest`` atomically; returns the manifest."""
+    """Write the kit into ``dest`` atomically; returns the manifest. Every distinct STL is verified
+    first (``verify_parts``): a bad part raises ``MeshError`` and nothing is written."""
     say = progress or (lambda name: None)
     items, done = [], {}
     for p in (p for p in kit.parts if p.printed):
@@ -161,6 +177,7 @@ def write_kit(kit: Kit, dest: Path, design: dict, extra_files: dict[str, bytes] 
             done[key] = printed(p)
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
+    verify_parts(groups, str(design.get("name", kit.params.name)))
     man = manifest(kit, groups, design)
     bought = [p for p in kit.parts if not p.printed]
     if bought:

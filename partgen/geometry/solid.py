@@ -7,7 +7,7 @@ import manifold3d as m3d
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-__all__ = ["cross_section", "extrude", "union", "prisms", "mesh_arrays"]
+__all__ = ["cross_section", "extrude", "slab", "union", "prisms", "mesh_arrays"]
 
 
 def _rings(geom) -> list[np.ndarray]:
@@ -34,6 +34,24 @@ def extrude(geom, height: float, z0: float = 0.0) -> m3d.Manifold:
     return m3d.Manifold.extrude(cs, height).translate((0.0, 0.0, z0))
 
 
+def slab(geom, z0: float, z1: float) -> m3d.Manifold:
+    """Prism of the outline from exactly z0 to exactly z1 (z1 > z0), mm.
+
+    Stacked prisms must share their faces exactly: z0 + (z1 - z0) can miss z1 by an ulp, and a
+    prism whose top is an ulp under the next one's bottom is a separate shell touching it, which
+    a float32 STL welds into non-manifold edges. Such a top is snapped onto z1."""
+    solid = extrude(geom, z1 - z0, z0)
+    if z0 + (z1 - z0) == z1:
+        return solid
+    mid = 0.5 * (z0 + z1)
+
+    def snap(v):
+        v = np.array(v, dtype=np.float64)
+        v[:, 2] = np.where(v[:, 2] > mid, z1, z0)
+        return v
+    return solid.warp_batch(snap)
+
+
 SLIVER = 1e-6  # mm: edges shorter than this, left where solids meet face to face, are collapsed
 
 
@@ -54,4 +72,4 @@ def mesh_arrays(solid: m3d.Manifold) -> tuple[np.ndarray, np.ndarray]:
 
 def prisms(items) -> m3d.Manifold:
     """Union of prisms; items: iterable of (outline, z0, z1) with z1 > z0, mm."""
-    return union([extrude(g, z1 - z0, z0) for g, z0, z1 in items])
+    return union([slab(g, z0, z1) for g, z0, z1 in items])
