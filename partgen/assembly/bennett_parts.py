@@ -109,7 +109,10 @@ def base_features(p: BennettParams, lay: Layout):
     off = lay.offset("S14", BASE, p.pitch)
     boss = Boss((0.0, 0.0, 0.0), (0.0, 0.0, 1.0), off, p.boss_radius, p.boss_length, p.bore_radius)
     top = off - p.boss_length / 2
-    column = Bar((0.0, 0.0, top), (0.0, 0.0, top - p.base_height), p.boss_radius)
+    # the column is a capsule of the boss's radius: its upper ball must overlap the boss (by h) but
+    # stay under the boss's far face, or it seals the pin's bore shut (a void inside the base)
+    h = min(p.boss_length, p.boss_radius) / 2
+    column = Bar((0.0, 0.0, top - p.boss_radius + h), (0.0, 0.0, top - p.base_height), p.boss_radius)
     return [boss], [column]
 
 

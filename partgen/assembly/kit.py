@@ -189,14 +189,13 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     prox_r = rb + jn.press_clearance / 2 + params.boss_wall
     for j, link in enumerate(mech.chain.links, 1):
         S, Pz = link.length, st.plate_z(j)
-        feats, idler, distal_hole = [], None, None
+        feats, idler, distal_hole, posts = [], None, None, []
         if j < n:
             stage = (mech.stages or mech.belt_stages)[j - 1]
             top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
-            feats += [(P.annulus(ra, rb, FEATURE_TOL, (S, 0.0)), t, t + g),
-                      (P.disc(ra, FEATURE_TOL, (S, 0.0)), t, top - Pz)]
-            if j + 1 < n:
-                feats.append((P.translate2d(post.shaft(FEATURE_TOL), S, 0.0), top - Pz, top - Pz + f))
+            feats += [(P.annulus(ra, rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
+            posts.append(P.shaft(post, [("round", t, top - Pz)] + ([("D", top - Pz, top - Pz + f)] if j + 1 < n else []),
+                                 FEATURE_TOL, (S, 0.0)))
             c = stage.idler if mech.stages else stage.tensioner
             if c is not None:
                 feats += [(P.annulus(ra, rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
@@ -205,7 +204,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
         else:
             distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
             distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
-        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole)
+        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole, posts)
         add(Part(f"B{j}", "link", solid))
 
     # base, legs, drive axle, crank, pen holder
@@ -227,11 +226,9 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
                                                                    for c in legs]
     outline = outline.difference(P.union2d(holes))
     top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
-    feats = [(P.annulus(ra, rb, FEATURE_TOL), 0.0, g), (P.disc(ra, FEATURE_TOL), 0.0, top1),
-             (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
-    if n > 1:
-        feats.append((post.shaft(FEATURE_TOL), top1, top1 + f))
-    add(Part("base", "base", P.base_plate(outline, bt, feats)))
+    feats = [(P.annulus(ra, rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+    ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
+    add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post])))
     leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
     for i in range(len(legs)):
         add(Part(f"leg{i + 1}", "leg", leg_solid))
