@@ -18,13 +18,10 @@ import trimesh
 from ..assembly.kit import Kit
 from ..geometry.parts import Part
 from ..errors import MeshError
-from ..geometry.solid import mesh_arrays
+from ..geometry.solid import mesh_arrays, print_arrays
 from .verify import mesh_report, read_stl
 
 __all__ = ["PrintedPart", "printed", "group_parts", "manifest", "verify_parts", "write_kit", "atomic_dir"]
-
-FLIP = np.diag([1.0, -1.0, -1.0, 1.0])  # half a turn about x: prints a part upside down
-
 
 @dataclass(frozen=True)
 class PrintedPart:
@@ -38,11 +35,7 @@ class PrintedPart:
 
 def printed(part: Part) -> PrintedPart:
     """Lay a part on the build plate (flipped if it prints upside down, lowest point at z = 0)."""
-    v, f = mesh_arrays(part.solid)
-    print_from_local = FLIP.copy() if part.print_flip else np.eye(4)
-    v = v @ print_from_local[:3, :3].T
-    print_from_local[2, 3] = -v[:, 2].min()
-    v[:, 2] -= v[:, 2].min()
+    v, f, print_from_local = print_arrays(part.solid, part.print_flip)
     # the mesh exactly as the STL stores it (float32), so the manifest describes the file
     mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
     stl = trimesh.exchange.stl.export_stl(mesh)
