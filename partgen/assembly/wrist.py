@@ -69,8 +69,9 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
     theta_max = workspace_theta_max(I, spec.max_bend)
     parts, domes, pieces, n_poses, caps = _gear_parts(spec, pair, theta_max, 0, say)
     # A part whose mesh has two vertices a float32 STL cannot tell apart (a 3-D boolean of curved
-    # solids leaves that now and then) is made again with its surfaces of revolution turned about
-    # their axes (the same gear, cut differently) or the cross gear grown by a little more. Each
+    # solids leaves that now and then, or pinches where two sweep pieces share a sphere) is made
+    # again with its surfaces of revolution turned about their axes and its spheres' facets turned
+    # (the same gear, tessellated differently) or the cross gear grown by a little more. Each
     # attempt builds the parts afresh: manifold3d's lazy evaluation (and so its triangulation)
     # depends on what else holds a solid, so the first attempt is evaluated as a kit always was.
     for i in range(len(parts)):
@@ -106,19 +107,20 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
     alpha2 = min(math.pi / 2, float(sph.mating_angle(alpha1, I)))
     fit = DFit(spec.shaft_diameter / 2, spec.press_clearance)
     turn = lambda cap: cap.rotate((0.0, 0.0, CAP_TURNS_DEG[k])) if k else cap  # noqa: E731
+    facets = (17.0 * k, 29.0 * k, 0.0)  # the spheres of teeth and sockets tessellated differently
     parts = []
     say("gear1")
     cap1 = W.revolved_cap(r_of1, alpha1, -spec.base_height, fit.radius + 3.0, spec.tol)
     domes = W.dome_teeth([(r.theta, r.teeth) for r in pair.rows], r_of1, spec.dome_radius, spec.tooth_height)
     segs = max(24, int(round(2 * math.pi * spec.dome_radius / 0.5)))
     bore = extrude(fit.hole(0.01), spec.base_height + A / 4, -spec.base_height - 1.0)
-    parts.append(Part("gear1", "wrist_gear", (turn(cap1) + W.domes_union(domes, 0.0, segs)) - bore))
+    parts.append(Part("gear1", "wrist_gear", (turn(cap1) + W.domes_union(domes, 0.0, segs, facets)) - bore))
     say("gear2 sockets")
     thetas = np.linspace(0.0, theta_max, spec.theta_steps)
     psis = 2 * np.pi * np.arange(spec.psi_steps) / spec.psi_steps
     poses = np.array([[np.linalg.inv(sph.gear2_pose(t, p, I, A)) for p in psis] for t in thetas])
     reach = float(r_of2(np.array([alpha2]))[0]) + 1.0
-    sweep, pieces = W.socket_sweep(domes, poses, spec.clearance, reach, segs)
+    sweep, pieces = W.socket_sweep(domes, poses, spec.clearance, reach, segs, turn=facets)
     cap2 = W.revolved_cap(r_of2, alpha2, -spec.base_height, fit.radius + 3.0, spec.tol)
     parts.append(Part("gear2", "wrist_gear", (turn(cap2) - sweep) - bore))
     if spec.cross is not None:  # the second tooth form: an ABENICS cross gear on the same sphere
