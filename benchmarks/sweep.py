@@ -155,6 +155,7 @@ class Outcome:
     warned: tuple[str, ...] = ()  # the rules build warned about
     checked: bool = False
     fails: tuple[tuple[str, bool], ...] = ()  # (rule, warned by build) of each failed check finding
+    messages: tuple[str, ...] = ()  # the failed findings' messages
     seconds: float = 0.0
     parts: int = 0
     design: dict = field(default_factory=dict, repr=False)
@@ -210,8 +211,9 @@ def run_one(mechanism: str, design: dict, workdir: Path, check: bool = False, sa
         try:
             _, _, result, _ = pipeline.check(dest, samples=samples, write_plates=False)
             out.checked = True
-            out.fails = tuple((finding_rule(f), finding_rule(f) in out.warned or f.check == "design")
-                              for f in result.findings if f.severity == "fail")
+            failed = [f for f in result.findings if f.severity == "fail"]
+            out.fails = tuple((finding_rule(f), finding_rule(f) in out.warned or f.check == "design") for f in failed)
+            out.messages = tuple(f.message for f in failed)
         except Exception as e:  # noqa: BLE001
             out.status, out.detail = "crashed", f"check: {type(e).__name__}: {e}\n{traceback.format_exc(limit=-4)}"
     out.seconds = time.perf_counter() - t0
@@ -283,7 +285,8 @@ def main(argv=None) -> int:
                     mark = "F"
                 print(mark, end="", file=sys.stderr, flush=True)
                 if args.verbose and (o.status in ("crashed", "bad_mesh") or any(not w for _, w in o.fails)):
-                    print(f"\n{o.name} {o.status}: {o.detail[:600]} {[r for r, w in o.fails if not w]}\n"
+                    print(f"\n{o.name} {o.status}: {o.detail[:600]} "
+                          f"{[m for (r, w), m in zip(o.fails, o.messages) if not w][:6]}\n"
                           f"  {json.dumps(o.design.get('gears') or o.design.get('wrist') or o.design.get('parts'))}\n"
                           f"  {json.dumps(o.design.get('joints', {}))} {json.dumps(o.design.get('plates', {}))} "
                           f"{json.dumps(o.design.get('curve', {}).get('scale_mm_per_unit'))}", file=sys.stderr)

@@ -193,12 +193,14 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
         if j < n:
             stage = (mech.stages or mech.belt_stages)[j - 1]
             top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
-            feats += [(P.annulus(ra, rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
+            # thrust rings are discs the post or pin runs through: an annulus would share its inner
+            # wall with the post's, and two coincident walls unite into a zero-width crack
+            feats += [(P.disc(rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
             posts.append(P.shaft(post, [("round", t, top - Pz)] + ([("D", top - Pz, top - Pz + f)] if j + 1 < n else []),
                                  FEATURE_TOL, (S, 0.0)))
             c = stage.idler if mech.stages else stage.tensioner
             if c is not None:
-                feats += [(P.annulus(ra, rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
+                feats += [(P.disc(rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
                 idler = (c, ra + params.boss_wall)
             distal = (S, ra + params.boss_wall)
         else:
@@ -226,7 +228,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
                                                                    for c in legs]
     outline = outline.difference(P.union2d(holes))
     top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
-    feats = [(P.annulus(ra, rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+    feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
     ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
     add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post])))
     leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
