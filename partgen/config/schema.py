@@ -29,6 +29,7 @@ class Printer(Strict):
     min_gear_diameter_mm: Pos = Field(description="smallest reliable gear (reference pitch diameter)")
     min_link_length_mm: Pos
     min_wall_mm: Pos
+    min_hole_to_size_diameter_mm: Pos = Field(3.0, description="smallest hole held to size (press-fit D, pen bore)")
 
 
 class Polar(Strict):

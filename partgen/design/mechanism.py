@@ -16,6 +16,7 @@ from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
 from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
+from .rules import GearRules, gear_breaches, mesh_breaches
 from .synthesis import Chain
 
 __all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
@@ -33,6 +34,9 @@ class Joints:
 
 @dataclass(frozen=True)
 class PrinterLimits:
+    """A printer's profile (mm). ``min_hole``: the smallest hole that runs reliably on a pin or
+    axle; ``min_hole_to_size``: the smallest hole it holds to size (a press-fit D, a pen bore)."""
+
     name: str
     envelope: tuple[float, float, float]
     resolution: float
@@ -40,6 +44,7 @@ class PrinterLimits:
     min_gear: float
     min_link: float
     min_wall: float
+    min_hole_to_size: float = 3.0
 
 
 @dataclass(frozen=True)
@@ -170,7 +175,8 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     if len(links) < 1:
         raise DesignError("the chain has no links", "links")
     system = params.system
-    limits = Limits(params.printer.min_gear, params.min_root_diameter, inputs.tip_gap, inputs.idler_reach)
+    limits = Limits(params.printer.min_gear, params.min_root_diameter, inputs.tip_gap, inputs.idler_reach,
+                    gear_rules(params))
     findings: list[Finding] = []
     for j, link in enumerate(links, 1):
         if link.length < params.printer.min_link - 1e-9:
@@ -196,12 +202,25 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
             stages.append(st)
             findings += verify_stage(st, limits, f"teeth[{j - 1}]")
     G1, drive, drive_centre = _drive(params)
+    findings += drive_findings(G1, drive, limits.rules)
     distinct = {(g.teeth, g.profile_shift): g for s in stages for g in (s.D, s.M, s.G)}
     for g in distinct.values():
         check_generable(g)
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
                      inputs.chain)
+
+
+def gear_rules(params: KitParams) -> GearRules:
+    """The gear and mesh rules of a kit: its check settings on its printer."""
+    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.resolution)
+
+
+def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Finding]:
+    """Warnings for the drive pair (teeth given by ``drive.teeth``): the rules it breaks."""
+    broken = gear_breaches(G1, rules, f"G1 and the drive gear ({G1.teeth})") + mesh_breaches(
+        G1, drive, centre_distance(G1, drive), rules, ("G1", "the drive gear"))
+    return [Finding("warning", b.rule, f"drive: {b.message}", "drive.teeth") for b in broken]
 
 
 def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
@@ -236,6 +255,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
             findings.append(Finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
                                     f"{st.link_change:+.3f} mm so a {st.belt_teeth}-tooth belt fits", "belts"))
     G1, drive, drive_centre = _drive(params)
+    findings += drive_findings(G1, drive, gear_rules(params))
     chain = Chain(tuple(links), inputs.chain.offset)
     return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
                      True, inputs.source, tuple(stages), inputs.chain)
