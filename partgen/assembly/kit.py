@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..design.kinematics import clockings, gear_poses, joint_positions, link_angles
-from ..design.mechanism import KitParams, Mechanism
+from ..design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
 from ..errors import DesignError
 from ..geometry import parts as P
 from ..geometry.parts import DFit, Part
@@ -124,7 +124,11 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     bore_r = params.bore / 2
     post = DFit(ra, jn.press_clearance)
     # G's D-boss: the wall under its flat is half the hub wall (the flat cuts FLAT_DEPTH deep)
-    boss = DFit(bore_r + P.FLAT_DEPTH + params.hub_wall / 2, jn.press_clearance)
+    # (at least the printer's thinnest wall, with the bore polygon's excess over its circle)
+    boss = DFit(bore_r + P.FLAT_DEPTH + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL),
+                jn.press_clearance)
+    # a collar keeps at least the boss's wall around the bore
+    collar_min = bore_r + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL)
     rb = boss.radius
     n = len(mech.chain.links)
     clock = clockings(mech)
@@ -138,7 +142,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
 
     # gears
     def fixed(name: str, spec):
-        collar_r = min(rb + 2.0, spec.root_radius - 0.5)
+        collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
         solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
         add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
 
@@ -167,7 +171,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
             body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f, holes[hole],
                                  FEATURE_TOL)
             if name[0] == "G":
-                collar_r = min(rb + 2.0, pulley.root_radius - 0.5)
+                collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
                 body = P.fixed_hub(body, f, bore_r, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
             add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
                                                  ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4)))))
@@ -240,7 +244,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
                                        HANDLE_LEN, FEATURE_TOL), print_flip=True))
     add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
-                                                      params.pen_diameter / 2 + 0.1, 2.0, FEATURE_TOL),
+                                                      (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, 2.0, FEATURE_TOL),
              print_flip=True))
 
     contacts = _contacts(mech, params, st, len(legs))

@@ -16,7 +16,7 @@ from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
 from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from .rules import GearRules, gear_breaches, mesh_breaches
+from .rules import GearRules, gear_breaches, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
 
 __all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
@@ -89,7 +89,9 @@ class KitParams:
 
     @property
     def min_root_diameter(self) -> float:
-        return self.bore + 2 * self.hub_wall
+        """Root circle that keeps ``hub_wall`` around a gear's largest hole: its running bore or its
+        press-fit D-hole, mm."""
+        return max(self.bore, self.joints.axle_diameter + self.joints.press_clearance) + 2 * self.hub_wall
 
 
 @dataclass(frozen=True)
@@ -202,13 +204,49 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
             stages.append(st)
             findings += verify_stage(st, limits, f"teeth[{j - 1}]")
     G1, drive, drive_centre = _drive(params)
-    findings += drive_findings(G1, drive, limits.rules)
+    findings += drive_findings(G1, drive, limits.rules) + kit_findings(params)
     distinct = {(g.teeth, g.profile_shift): g for s in stages for g in (s.D, s.M, s.G)}
     for g in distinct.values():
         check_generable(g)
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
                      inputs.chain)
+
+
+HOLE_EXCESS = 0.01  # mm: a hole's polygon circumscribes its circle by up to the features' chord tolerance
+PEN_BORE_CLEARANCE = 0.2  # mm, diametral: the pen holder's bore over the pen
+
+
+def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[Finding]:
+    """Warnings for the printer's hole and wall rules (design.rules) that the given sizes break:
+    the joints' bores, the holes held to size, the hub and boss walls, the tensioner rollers."""
+    pr, jn = params.printer, params.joints
+    out = []
+
+    def add(b, key, hint):
+        if b is not None:
+            out.append(Finding("warning", b.rule, f"{b.message}: {hint}", key))
+
+    add(hole_breach(params.bore, True, pr.min_hole, pr.min_hole_to_size), "joints.axle_diameter_mm",
+        f"gears and plates turn on the axles in bores of Ø{params.bore:.2f} mm (axle + running clearance); "
+        f"use an axle of at least {pr.min_hole - jn.running_clearance:.2f} mm")
+    add(hole_breach(jn.axle_diameter + jn.press_clearance, False, pr.min_hole, pr.min_hole_to_size),
+        "joints.axle_diameter_mm", "the D-holes that press onto the axles")
+    add(hole_breach(params.pen_diameter + PEN_BORE_CLEARANCE, False, pr.min_hole, pr.min_hole_to_size),
+        "pen.diameter_mm", "the pen holder's bore")
+    wall = params.hub_wall - max(0.0, jn.press_clearance - jn.running_clearance) / 2 - HOLE_EXCESS
+    add(wall_breach(wall, pr.min_wall), "gears.hub_wall_mm",
+        f"the gears' walls around their bores; use hub_wall_mm ≥ {pr.min_wall + params.hub_wall - wall:.2f}")
+    wall = params.boss_wall - jn.press_clearance / 2 - HOLE_EXCESS
+    add(wall_breach(wall, pr.min_wall), "plates.boss_wall_mm",
+        f"the plates' and the crank's walls around their D-holes; use boss_wall_mm ≥ "
+        f"{pr.min_wall + params.boss_wall - wall:.2f}")
+    if belts is not None:
+        wall = belts.tensioner_radius - params.bore / 2 - HOLE_EXCESS
+        add(wall_breach(wall, pr.min_wall), "belts.tensioner_radius_mm",
+            f"the tensioner rollers' walls around their bores; use tensioner_radius_mm ≥ "
+            f"{pr.min_wall + belts.tensioner_radius - wall:.2f}")
+    return out
 
 
 def gear_rules(params: KitParams) -> GearRules:
@@ -240,7 +278,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
     z_min = 10
     while True:
         root = pitch_diameter_belt(z_min, b.profile) / 2 - b.profile.pitch_line_offset - b.profile.groove_depth
-        if root >= params.bore / 2 + params.hub_wall:
+        if root >= params.min_root_diameter / 2:
             break
         z_min += 1
     links = list(inputs.chain.links)
@@ -255,7 +293,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
             findings.append(Finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
                                     f"{st.link_change:+.3f} mm so a {st.belt_teeth}-tooth belt fits", "belts"))
     G1, drive, drive_centre = _drive(params)
-    findings += drive_findings(G1, drive, gear_rules(params))
+    findings += drive_findings(G1, drive, gear_rules(params)) + kit_findings(params, b)
     chain = Chain(tuple(links), inputs.chain.offset)
     return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
                      True, inputs.source, tuple(stages), inputs.chain)
