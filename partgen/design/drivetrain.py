@@ -9,13 +9,15 @@ at (S, 0), +v to the left of the link (counter-clockwise). mm, rad.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass
+from functools import lru_cache
 from fractions import Fraction
 from typing import Sequence
 
 from ..errors import DesignError
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from .rules import Breach, GearRules, gear_breaches, mesh_breaches
+from .rules import Breach, GearRules, check_generable, gear_breaches, mesh_breaches
 
 __all__ = [
     "Limits", "Stage", "Finding", "eq11_ratios", "idler_centre", "make_stage",
@@ -157,14 +159,32 @@ def stage_breaches(D: GearSpec, M: GearSpec, G: GearSpec, rules: GearRules | Non
     return out
 
 
-IDLER_TRIES = 40  # larger idlers tried when the smallest that reaches breaks a rule
+IDLER_TRIES = 6  # larger idlers tried when the smallest that reaches breaks a rule
+
+
+@lru_cache(maxsize=65536)
+def _gear_broken(g: GearSpec, rules: GearRules) -> tuple[str, ...]:
+    """The rules a gear breaks on its own; a pointed tooth breaks tip-width, and a rack that cannot
+    generate any gear (fillets that overlap) is the design's error, raised."""
+    broken = tuple(b.rule for b in gear_breaches(g, rules))
+    try:
+        check_generable(g)
+    except DesignError as e:
+        if e.key_path != "gears.profile_shift":
+            raise
+        broken = broken or ("tip-width",)
+    return broken
+
+
+@lru_cache(maxsize=65536)
+def _mesh_broken(g1: GearSpec, g2: GearSpec, rules: GearRules) -> tuple[str, ...]:
+    return tuple(b.rule for b in mesh_breaches(g1, g2, centre_distance(g1, g2), rules))
 
 
 def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits):
     """(best teeth or None, zmin, Counter of the rules that turned candidates away)."""
-    from collections import Counter
-
     zmin = _min_teeth(limits, system)
+    rules = limits.rules
     best, best_key, turned = None, None, Counter()
     for td, tg in ratio_multiples(ratio, zmin):
         D, G = make_gear(td, system), make_gear(tg, system)
@@ -172,6 +192,11 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
             break  # Eq 12 fails from here on: every larger n only grows the gears
         if best_key is not None and max(td, tg) > best_key[0]:
             break  # every larger n only makes a larger largest gear
+        if rules is not None:
+            broken = _gear_broken(D, rules) or _gear_broken(G, rules)
+            if broken:
+                turned.update(broken)
+                continue
         # the reach grows with T_M by about one module per tooth: start a little under the
         # unshifted estimate m/2 (T_D + 2 T_M + T_G) = S + reach instead of at zmin
         guess = math.floor(((length + limits.idler_reach) * 2 / system.module - td - tg) / 2) - 3
@@ -186,10 +211,11 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
             key = (max(td, tm, tg), td + tm + tg)
             if best_key is not None and key >= best_key:
                 break
-            broken = stage_breaches(D, M, G, limits.rules)
-            if broken:
-                turned.update(b.rule for b in broken)
-                continue
+            if rules is not None:
+                broken = _gear_broken(M, rules) or _mesh_broken(D, M, rules) or _mesh_broken(M, G, rules)
+                if broken:
+                    turned.update(broken)
+                    continue
             best, best_key = (td, tm, tg), key
             break
     return best, zmin, turned
@@ -219,38 +245,31 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
 
 
 def _what_works(length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> str:
-    """Settings that would let ``choose_stage`` find teeth for this link, in words: the largest
-    module (in 0.05 mm steps) and the shortest link (in 1 mm steps) that work, and the ISO 53
-    tooth proportions if they are what the rules need."""
+    """Settings that would let ``choose_stage`` find teeth for this link, in words: the ISO 53 tooth
+    proportions (when the rules need them), a smaller module, a longer link."""
     from dataclasses import replace
 
+    def works(length_: float, system_: ToothSystem) -> bool:
+        try:
+            return _search(length_, ratio, system_, limits)[0] is not None
+        except DesignError:
+            return False
+
     found = []
-    for k in range(1, 40):
-        m = round(system.module - 0.05 * k, 2)
-        if m < 0.3:
-            break
-        try:
-            if _search(length, ratio, replace(system, module=m), limits)[0] is not None:
-                found.append(f"gears.module_mm ≤ {m:g}")
-                break
-        except DesignError:
-            break
-    for extra in range(1, int(2 * length) + 1):
-        try:
-            if _search(length + extra, ratio, system, limits)[0] is not None:
-                found.append(f"a link of {length + extra:.0f} mm (a scale {(length + extra) / length:.2f}× larger)")
-                break
-        except DesignError:
-            break
     std = replace(system, addendum_coeff=1.0, dedendum_coeff=1.25, cutter_tip_coeff=0.38)
-    if std != system:
-        try:
-            if _search(length, ratio, std, limits)[0] is not None:
-                found.append("ISO 53 tooth proportions (addendum_coeff 1, dedendum_coeff 1.25, "
-                             "cutter_tip_radius_coeff 0.38)")
-        except DesignError:
-            pass
-    return ("would work: " + "; or ".join(found)) if found else "no smaller module or longer link up to twice its length works"
+    if std != system and works(length, std):  # the proportions are what breaks the rules
+        return "would work: ISO 53 tooth proportions (addendum_coeff 1, dedendum_coeff 1.25, cutter_tip_radius_coeff 0.38)"
+    for f in (0.9, 0.8, 0.7, 0.6):
+        m = math.floor(system.module * f / 0.05) * 0.05
+        if 0 < m < system.module and works(length, replace(system, module=round(m, 2))):
+            found.append(f"gears.module_mm ≤ {m:.2f}")
+            break
+    for f in (1.1, 1.25, 1.5, 2.0):
+        if works(length * f, system):
+            found.append(f"the link {f:g}× as long ({length * f:.1f} mm: a scale {f:g}× larger)")
+            break
+    return ("would work: " + "; or ".join(found)) if found else \
+        "no module down to 0.6× this one, nor a link up to twice as long, works"
 
 
 def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:

@@ -16,7 +16,7 @@ from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
 from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from .rules import GearRules, gear_breaches, hole_breach, mesh_breaches, wall_breach
+from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
 
 __all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize"]
@@ -154,21 +154,6 @@ class Mechanism:
 
 def pitch_diameter_belt(teeth: int, profile: BeltProfile) -> float:
     return _pd(teeth, profile.pitch)
-
-
-def check_generable(gear: GearSpec) -> None:
-    """Raise DesignError (naming the config key) if the rack cannot generate this gear: cutter tip
-    fillets that overlap, a tip inside the base circle, a pointed tooth."""
-    s = gear.system
-    try:
-        involute.gear_outline(gear.teeth, s.module, s.pressure_angle, gear.profile_shift, s.backlash_per_gear,
-                              s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05)
-    except ValueError as e:
-        msg = str(e)
-        key = ("gears.cutter_tip_radius_coeff" if msg.startswith("rho") else
-               "gears.profile_shift" if "pointed" in msg else "gears.addendum_coeff" if msg.startswith("ha") else "gears")
-        raise DesignError(f"a {gear.teeth}-tooth gear (x = {gear.profile_shift:.4g}) cannot be generated: {msg}",
-                          key) from None
 
 
 def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:

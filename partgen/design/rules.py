@@ -24,10 +24,11 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
+from ..errors import DesignError
 from . import involute
 from .gearing import GearSpec
 
-__all__ = ["TIP_ROOT_COEFF", "GearRules", "Breach", "tip_root_clearance", "contact_ratio", "form_radius",
+__all__ = ["TIP_ROOT_COEFF", "GearRules", "Breach", "check_generable", "tip_root_clearance", "contact_ratio", "form_radius",
            "mate_contact_radius", "mesh_breaches", "gear_breaches", "hole_breach", "wall_breach"]
 
 TIP_ROOT_COEFF = 0.05  # × module: the least clearance between a tip and its mate's root
@@ -74,11 +75,30 @@ def contact_ratio(g1: GearSpec, g2: GearSpec, a: float) -> float:
 
 
 @lru_cache(maxsize=4096)
-def form_radius(g: GearSpec) -> float:
-    """Radius where ``g``'s generated involute flank starts (above the fillet or the undercut), mm."""
+def _coarse_outline(g: GearSpec) -> involute.GearOutline | str:
     s = g.system
-    return involute.gear_outline(g.teeth, s.module, s.pressure_angle, g.profile_shift, s.backlash_per_gear,
-                                 s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05).form_radius
+    try:
+        return involute.gear_outline(g.teeth, s.module, s.pressure_angle, g.profile_shift, s.backlash_per_gear,
+                                     s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05)
+    except ValueError as e:
+        return str(e)
+
+
+def check_generable(gear: GearSpec) -> None:
+    """Raise DesignError (naming the config key) if the rack cannot generate this gear: cutter tip
+    fillets that overlap, a tip inside the base circle, a pointed tooth."""
+    out = _coarse_outline(gear)
+    if isinstance(out, str):
+        key = ("gears.cutter_tip_radius_coeff" if out.startswith("rho") else
+               "gears.profile_shift" if "pointed" in out else "gears.addendum_coeff" if out.startswith("ha") else "gears")
+        raise DesignError(f"a {gear.teeth}-tooth gear (x = {gear.profile_shift:.4g}) cannot be generated: {out}", key)
+
+
+def form_radius(g: GearSpec) -> float:
+    """Radius where ``g``'s generated involute flank starts (above the fillet or the undercut), mm.
+    Raises DesignError for a gear the rack cannot generate."""
+    check_generable(g)
+    return _coarse_outline(g).form_radius
 
 
 def mate_contact_radius(g: GearSpec, mate: GearSpec, a: float) -> float:
