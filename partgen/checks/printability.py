@@ -40,16 +40,16 @@ def holes(shape) -> list[tuple[Polygon, float]]:
 
 
 def running_axes(kit: Kit) -> dict[str, list[tuple[float, float]]]:
-    """name -> the axes (x, y in the part's frame) of the parts it makes a running fit with: a
-    hole of the part around one of them runs on a pin or axle."""
+    """name -> the running axes (x, y in the part's frame) through it: a hole around one runs on a
+    pin or axle. A running contact (a, b) is part a turning on b, about a's own axis (its origin)."""
     poses = kit.poses(0.0)
     out: dict[str, list[tuple[float, float]]] = {}
     for c in kit.contacts:
         if c.kind != "running":
             continue
-        for a, b in ((c.a, c.b), (c.b, c.a)):
-            p = np.linalg.inv(poses[a]) @ poses[b] @ np.array([0.0, 0.0, 0.0, 1.0])
-            out.setdefault(a, []).append((float(p[0]), float(p[1])))
+        out.setdefault(c.a, []).append((0.0, 0.0))
+        p = np.linalg.inv(poses[c.b]) @ poses[c.a] @ np.array([0.0, 0.0, 0.0, 1.0])
+        out.setdefault(c.b, []).append((float(p[0]), float(p[1])))
     return out
 
 
