@@ -164,16 +164,8 @@ IDLER_TRIES = 6  # larger idlers tried when the smallest that reaches breaks a r
 
 @lru_cache(maxsize=65536)
 def _gear_broken(g: GearSpec, rules: GearRules) -> tuple[str, ...]:
-    """The rules a gear breaks on its own; a pointed tooth breaks tip-width, and a rack that cannot
-    generate any gear (fillets that overlap) is the design's error, raised."""
-    broken = tuple(b.rule for b in gear_breaches(g, rules))
-    try:
-        check_generable(g)
-    except DesignError as e:
-        if e.key_path != "gears.profile_shift":
-            raise
-        broken = broken or ("tip-width",)
-    return broken
+    """The rules a gear breaks on its own (a pointed tooth has a tip narrower than any rule)."""
+    return tuple(b.rule for b in gear_breaches(g, rules))
 
 
 @lru_cache(maxsize=65536)
@@ -185,6 +177,12 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
     """(best teeth or None, zmin, Counter of the rules that turned candidates away)."""
     zmin = _min_teeth(limits, system)
     rules = limits.rules
+    if rules is not None:  # a rack that cannot generate a gear (fillets that overlap) is the design's error
+        try:
+            check_generable(make_gear(zmin, system))
+        except DesignError as e:
+            if e.key_path != "gears.profile_shift":  # a pointed tooth is one gear's: tip-width
+                raise
     best, best_key, turned = None, None, Counter()
     for td, tg in ratio_multiples(ratio, zmin):
         D, G = make_gear(td, system), make_gear(tg, system)

@@ -28,10 +28,11 @@ from ..errors import DesignError
 from . import involute
 from .gearing import GearSpec
 
-__all__ = ["TIP_ROOT_COEFF", "GearRules", "Breach", "check_generable", "tip_root_clearance", "contact_ratio", "form_radius",
+__all__ = ["TIP_ROOT_COEFF", "CODES", "GearRules", "Breach", "check_generable", "tip_root_clearance", "contact_ratio", "form_radius",
            "mate_contact_radius", "mesh_breaches", "gear_breaches", "hole_breach", "wall_breach"]
 
 TIP_ROOT_COEFF = 0.05  # × module: the least clearance between a tip and its mate's root
+CODES = ("tip-root", "contact-ratio", "involute", "backlash", "tip-width", "wall", "hole", "hole-to-size")
 
 
 @dataclass(frozen=True)
@@ -96,7 +97,20 @@ def check_generable(gear: GearSpec) -> None:
 
 def form_radius(g: GearSpec) -> float:
     """Radius where ``g``'s generated involute flank starts (above the fillet or the undercut), mm.
-    Raises DesignError for a gear the rack cannot generate."""
+
+    The rack's straight flank ends where its tip fillet (radius ρm) meets it, ρm(1 − sin α) above
+    its tip line: w_f = (x − h_f + ρ(1 − sin α))·m from the gear's pitch circle. That point is in
+    contact on the line of action −w_f/sin α from the pitch point, so the flank starts at
+    √(r_b² + (r_p sin α + w_f / sin α)²) (equal to design.involute.gear_outline's to 1e-14 mm).
+    When that falls inside the base circle the gear is undercut, and the crossing of trochoid and
+    involute is found on the generated outline. Raises DesignError for a gear the rack cannot
+    generate."""
+    s = g.system
+    sa = math.sin(s.pressure_angle)
+    w_f = (g.profile_shift - s.dedendum_coeff + s.cutter_tip_coeff * (1.0 - sa)) * s.module
+    along = g.pitch_radius * sa + w_f / sa
+    if along > 1e-9:
+        return math.hypot(g.pitch_radius * math.cos(s.pressure_angle), along)
     check_generable(g)
     return _coarse_outline(g).form_radius
 
