@@ -124,13 +124,17 @@ def check_meshes(kit: Kit, thetas: np.ndarray) -> tuple[list[Finding], list[dict
                "worst_overlap_mm3": round(worst[0], 6)}
         rows.append(row)
         label = f"{c.a}/{c.b} ({ga.teeth}/{gb.teeth})"
-        if worst[0] > settings.interference_tolerance:
-            n = worst[1]
-            findings.append(Finding("mesh", "fail", f"{label}: teeth overlap by {worst[0]:.3f} mm³ at crank angle "
-                                    f"{math.degrees(thetas[n]):.1f}° (centre distance {a_op:.3f} mm, design "
-                                    f"{a_design:.3f} mm)", names, float(thetas[n]), worst[0], "mm3", worst[2]))
         # the rules `teeth: auto` chooses by (design.rules), at the centre distance as assembled
         broken = rules.mesh_breaches(ga, gb, a_op, mesh_rules, names)
+        if worst[0] > settings.interference_tolerance:
+            n = worst[1]
+            # teeth that overlap where the pair breaks a rule (a tip in its mate's fillet) overlap
+            # because of it: the finding carries that rule
+            cause = next((b.rule for b in broken if b.rule in ("involute", "tip-root", "backlash")), "")
+            findings.append(Finding("mesh", "fail", f"{label}: teeth overlap by {worst[0]:.3f} mm³ at crank angle "
+                                    f"{math.degrees(thetas[n]):.1f}° (centre distance {a_op:.3f} mm, design "
+                                    f"{a_design:.3f} mm)" + (f", from the {cause} rule broken below" if cause else ""),
+                                    names, float(thetas[n]), worst[0], "mm3", worst[2], rule=cause))
         for b in broken:
             findings.append(Finding("mesh", "fail", f"{label}: {b.message}", names, None, b.value,
                                     "" if b.rule == "contact-ratio" else "mm", rule=b.rule))
