@@ -69,7 +69,7 @@ def test_auto_teeth_pass_the_checks_rules(tmp_path, name):
         loaded = pipeline.load(design(tmp_path, curve=curve, **sections))
     except ConfigError as e:  # refused: it must name the rule, and what it says would work must
         msg = str(e)
-        assert "broke a rule" in msg and "would work" in msg, msg
+        assert "broke rules" in msg and "would work" in msg, msg
         m = re.search(r"gears\.module_mm ≤ ([0-9.]+)", msg)
         assert m, msg
         sections["gears"]["module_mm"] = float(m.group(1))

@@ -233,8 +233,8 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
     """
     best, zmin, turned = _search(length, ratio, system, limits)
     if best is None:
-        why = (f"; every candidate broke a rule `partgen check` holds the kit to ({', '.join(f'{r} × {n}' for r, n in turned.most_common())})"
-               if turned else "")
+        counts = ", ".join(f"{r} × {n}" for r, n in turned.most_common())
+        why = f"; the teeth that met them broke rules `partgen check` holds the kit to ({counts})" if turned else ""
         raise DesignError(
             f"link {j} (S = {length:.3f} mm): no whole teeth give the Eq 11 ratio {ratio} with D and G "
             f"at least {zmin} teeth and their tips {limits.tip_gap:g} mm apart at module "
