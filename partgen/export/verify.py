@@ -54,7 +54,7 @@ class MeshReport:
         for n, what in ((self.non_manifold_edges, "edges shared by more than two faces"),
                         (self.boundary_edges, "open (boundary) edges"),
                         (self.misoriented_edges, "edges with inconsistent winding"),
-                        (self.pinched_vertices, "vertices where bodies touch at a point"),
+                        (self.pinched_vertices, "vertices whose faces are not one fan (bodies touching there)"),
                         (self.zero_area_faces, "zero-area faces")):
             if n:
                 out.append(f"{n} {what}")
