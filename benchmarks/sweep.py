@@ -246,10 +246,10 @@ def summarize(outcomes: list[Outcome]) -> dict:
 
 
 def _refusal_kind(msg: str) -> str:
-    """A refusal's key path and the first words of its problem."""
-    parts = msg.split(": ")
-    key = parts[1] if len(parts) > 2 else ""
-    return f"{key}: {' '.join(parts[-1].split()[:6])}"
+    """A refusal's key path and the first words of its problem ("file: key: problem")."""
+    parts = msg.split(": ", 2)
+    key, problem = (parts[1], parts[2]) if len(parts) == 3 else ("", parts[-1])
+    return f"{key}: {' '.join(problem.split()[:6])}"
 
 
 def main(argv=None) -> int:
