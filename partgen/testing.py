@@ -90,9 +90,13 @@ def measure_spur_gear(outline: Polygon, teeth: int, module: float, pressure_angl
 
 
 def mesh_problems(mesh: trimesh.Trimesh, envelope=(406.0, 355.0, 406.0)) -> list[str]:
-    """What stops a mesh from printing as a solid: not watertight, inconsistent winding,
-    non-positive volume, below the build plate, larger than the envelope in any axis order."""
-    out = []
+    """What stops a mesh from printing as a solid: not one closed, oriented manifold shell once
+    written as an STL and read back as a slicer does (export.verify), not watertight, inconsistent
+    winding, non-positive volume, below the build plate, larger than the envelope in any axis
+    order."""
+    from .export.verify import mesh_report, read_stl
+
+    out = list(mesh_report(*read_stl(trimesh.exchange.stl.export_stl(mesh))).problems())
     if not mesh.is_watertight:
         out.append("not watertight")
     if not mesh.is_winding_consistent:

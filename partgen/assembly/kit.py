@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..design.kinematics import clockings, gear_poses, joint_positions, link_angles
-from ..design.mechanism import KitParams, Mechanism
+from ..design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
 from ..errors import DesignError
 from ..geometry import parts as P
 from ..geometry.parts import DFit, Part
@@ -129,7 +129,11 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     bore_r = params.bore / 2
     post = DFit(ra, jn.press_clearance)
     # G's D-boss: the wall under its flat is half the hub wall (the flat cuts FLAT_DEPTH deep)
-    boss = DFit(bore_r + P.FLAT_DEPTH + params.hub_wall / 2, jn.press_clearance)
+    # (at least the printer's thinnest wall, with the bore polygon's excess over its circle)
+    boss = DFit(bore_r + P.FLAT_DEPTH + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL),
+                jn.press_clearance)
+    # a collar keeps at least the boss's wall around the bore
+    collar_min = bore_r + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL)
     rb = boss.radius
     n = len(mech.chain.links)
     clock = clockings(mech)
@@ -143,7 +147,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
 
     # gears
     def fixed(name: str, spec):
-        collar_r = min(rb + 2.0, spec.root_radius - 0.5)
+        collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
         solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
         add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
 
@@ -172,7 +176,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
             body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f, holes[hole],
                                  FEATURE_TOL)
             if name[0] == "G":
-                collar_r = min(rb + 2.0, pulley.root_radius - 0.5)
+                collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
                 body = P.fixed_hub(body, f, bore_r, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
             add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
                                                  ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4)))))
@@ -197,23 +201,24 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     prox_r = rb + jn.press_clearance / 2 + params.boss_wall
     for j, link in enumerate(mech.chain.links, 1):
         S, Pz = link.length, st.plate_z(j)
-        feats, idler, distal_hole = [], None, None
+        feats, idler, distal_hole, posts = [], None, None, []
         if j < n:
             stage = (mech.stages or mech.belt_stages)[j - 1]
             top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
-            feats += [(P.annulus(ra, rb, FEATURE_TOL, (S, 0.0)), t, t + g),
-                      (P.disc(ra, FEATURE_TOL, (S, 0.0)), t, top - Pz)]
-            if j + 1 < n:
-                feats.append((P.translate2d(post.shaft(FEATURE_TOL), S, 0.0), top - Pz, top - Pz + f))
+            # thrust rings are discs the post or pin runs through: an annulus would share its inner
+            # wall with the post's, and two coincident walls unite into a zero-width crack
+            feats += [(P.disc(rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
+            posts.append(P.shaft(post, [("round", t, top - Pz)] + ([("D", top - Pz, top - Pz + f)] if j + 1 < n else []),
+                                 FEATURE_TOL, (S, 0.0)))
             c = stage.idler if mech.stages else stage.tensioner
             if c is not None:
-                feats += [(P.annulus(ra, rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
+                feats += [(P.disc(rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
                 idler = (c, ra + params.boss_wall)
             distal = (S, ra + params.boss_wall)
         else:
             distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
             distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
-        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole)
+        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole, posts)
         add(Part(f"B{j}", "link", solid))
 
     # base, legs, drive axle, crank, pen holder
@@ -235,11 +240,9 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
                                                                    for c in legs]
     outline = outline.difference(P.union2d(holes))
     top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
-    feats = [(P.annulus(ra, rb, FEATURE_TOL), 0.0, g), (P.disc(ra, FEATURE_TOL), 0.0, top1),
-             (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
-    if n > 1:
-        feats.append((post.shaft(FEATURE_TOL), top1, top1 + f))
-    add(Part("base", "base", P.base_plate(outline, bt, feats)))
+    feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+    ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
+    add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post])))
     leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
     for i in range(len(legs)):
         add(Part(f"leg{i + 1}", "leg", leg_solid))
@@ -249,7 +252,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
                                        HANDLE_LEN, FEATURE_TOL), print_flip=True))
     add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
-                                                      params.pen_diameter / 2 + 0.1, PEN_FLOOR, FEATURE_TOL),
+                                                      (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, PEN_FLOOR, FEATURE_TOL),
              print_flip=True))
 
     contacts = _contacts(mech, params, st, len(legs))

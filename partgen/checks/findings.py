@@ -16,6 +16,8 @@ class Finding:
     severity: "fail" (the kit does not hold), "warn", "info".
     parts: the parts involved; theta: crank angle, rad (None if it does not depend on it);
     value: the measured number (unit in ``unit``); location: world point (x, y, z), mm.
+    rule: the rule of ``design.rules`` it is about (``tip-root``, ``wall``, …), when it is one: the
+    code `build` names when it warns about the same rule.
     """
 
     check: str
@@ -26,6 +28,7 @@ class Finding:
     value: float | None = None
     unit: str = ""
     location: tuple[float, float, float] | None = None
+    rule: str = ""
 
     def to_dict(self) -> dict:
         d = {"check": self.check, "severity": self.severity, "message": self.message, "parts": list(self.parts)}
@@ -36,6 +39,8 @@ class Finding:
             d["unit"] = self.unit
         if self.location is not None:
             d["location_mm"] = [round(float(c), 4) for c in self.location]
+        if self.rule:
+            d["rule"] = self.rule
         return d
 
 

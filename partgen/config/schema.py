@@ -46,6 +46,7 @@ class Printer(Strict):
     min_gear_diameter_mm: Length = Field(description="smallest reliable gear (reference pitch diameter)")
     min_link_length_mm: Length
     min_wall_mm: Length
+    min_hole_to_size_diameter_mm: Length = Field(3.0, description="smallest hole held to size (press-fit D, pen bore)")
 
 
 class Polar(Strict):

@@ -140,10 +140,11 @@ def belt_path(circles: Sequence[tuple[tuple[float, float], float, int]], arc_ste
 
 
 def _tensioner(length: float, rd: float, rg: float, r_e: float, target: float, side: int, gap: float,
-               clear: tuple[float, float]) -> tuple[float, float] | None:
+               clear: tuple[float, float], r_roller: float | None = None) -> tuple[float, float] | None:
     """Centre of a backside idler (effective radius r_e) on the span on ``side`` (-1 below the
     link, +1 above) at mid-link, pushed in until the belt path is ``target`` long. None if it
-    cannot take up that much without coming within ``gap`` of a pulley's flange (radii ``clear``)."""
+    cannot take up that much without its flanges (radius ``r_roller``, default r_e) coming within
+    ``gap`` of a pulley's flange (radii ``clear``): they turn in the same layers."""
     u = length / 2
 
     def path_len(v):
@@ -170,7 +171,7 @@ def _tensioner(length: float, rd: float, rg: float, r_e: float, target: float, s
         else:
             hi = mid
     v = (lo + hi) / 2
-    r_idler = r_e
+    r_idler = r_e if r_roller is None else r_roller
     for (cx, r_fl) in ((0.0, clear[0]), (length, clear[1])):
         if math.hypot(u - cx, v) < r_idler + r_fl + gap:
             return None
@@ -195,7 +196,8 @@ def design_belt_stage(j: int, length: float, ratio: Fraction, profile: BeltProfi
             L = teeth * profile.pitch
             if L < lo:
                 continue
-            pos = _tensioner(length, D.pitch_radius, G.pitch_radius, r_e, L, side, gap, (fd, fg))
+            pos = _tensioner(length, D.pitch_radius, G.pitch_radius, r_e, L, side, gap, (fd, fg),
+                             max(r_e, idler_radius + flange))
             tried.append((zd, zg, teeth, pos is not None))
             if pos is None:
                 break  # a longer belt needs a deeper push: no better

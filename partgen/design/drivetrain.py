@@ -9,16 +9,19 @@ at (S, 0), +v to the left of the link (counter-clockwise). mm, rad.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass
+from functools import lru_cache
 from fractions import Fraction
 from typing import Sequence
 
 from ..errors import DesignError
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
+from .rules import Breach, GearRules, check_generable, gear_breaches, mesh_breaches
 
 __all__ = [
     "Limits", "Stage", "Finding", "eq11_ratios", "idler_centre", "make_stage",
-    "choose_stage", "verify_stage",
+    "choose_stage", "verify_stage", "stage_breaches",
 ]
 
 
@@ -31,12 +34,14 @@ class Limits:
     tip_gap : margin by which D's and G's tip circles must clear (Eq 12 with margin).
     idler_reach : margin by which a_DM + a_MG must exceed S (Eq 13 with margin: an idler
         exactly in line with D and G has no margin at all).
+    rules : tip-to-root clearance, contact ratio, involute interference, tip width (design.rules).
     """
 
     min_pitch_diameter: float
     min_root_diameter: float
     tip_gap: float
     idler_reach: float
+    rules: GearRules | None = None  # the mesh and gear rules `partgen check` holds the kit to
 
 
 @dataclass(frozen=True)
@@ -140,36 +145,129 @@ def _min_teeth(limits: Limits, system: ToothSystem) -> int:
     raise DesignError("no tooth count makes a gear large enough for its bore", "gears.module_mm")
 
 
-def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> Stage:
-    """``teeth: auto`` for one stage: T_D/T_G equal to the Eq 11 ratio exactly, Eq 12 and the idler's
-    reach met with the margins of ``limits``, every gear at least the printable minimum.
+def stage_breaches(D: GearSpec, M: GearSpec, G: GearSpec, rules: GearRules | None,
+                   names: tuple[str, str, str] = ("D", "M", "G")) -> list[Breach]:
+    """The rules of ``rules`` a stage breaks: its meshes D–M and M–G at their design centre
+    distances, and each gear's tooth tips."""
+    if rules is None:
+        return []
+    out = []
+    for g, n in ((D, names[0]), (M, names[1]), (G, names[2])):
+        out += gear_breaches(g, rules, f"{n} ({g.teeth})")
+    out += mesh_breaches(D, M, centre_distance(D, M), rules, (f"{names[0]} ({D.teeth})", f"{names[1]} ({M.teeth})"))
+    out += mesh_breaches(M, G, centre_distance(M, G), rules, (f"{names[1]} ({M.teeth})", f"{names[2]} ({G.teeth})"))
+    return out
 
-    Among feasible choices, the one with the smallest largest gear (then the fewest teeth) wins:
-    it keeps plates and gears small. (On the paper's link 1 this objective without margins gives
-    exactly the paper's 80/80/40.) Raises DesignError when no integers work.
-    """
+
+IDLER_TRIES = 6  # larger idlers tried when the smallest that reaches breaks a rule
+
+
+@lru_cache(maxsize=65536)
+def _gear_broken(g: GearSpec, rules: GearRules) -> tuple[str, ...]:
+    """The rules a gear breaks on its own (a pointed tooth has a tip narrower than any rule)."""
+    return tuple(b.rule for b in gear_breaches(g, rules))
+
+
+@lru_cache(maxsize=65536)
+def _mesh_broken(g1: GearSpec, g2: GearSpec, rules: GearRules) -> tuple[str, ...]:
+    return tuple(b.rule for b in mesh_breaches(g1, g2, centre_distance(g1, g2), rules))
+
+
+def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits):
+    """(best teeth or None, zmin, Counter of the rules that turned candidates away)."""
     zmin = _min_teeth(limits, system)
-    best, best_key = None, None
+    rules = limits.rules
+    if rules is not None:  # a rack that cannot generate a gear (fillets that overlap) is the design's error
+        try:
+            check_generable(make_gear(zmin, system))
+        except DesignError as e:
+            if e.key_path != "gears.profile_shift":  # a pointed tooth is one gear's: tip-width
+                raise
+    best, best_key, turned = None, None, Counter()
     for td, tg in ratio_multiples(ratio, zmin):
         D, G = make_gear(td, system), make_gear(tg, system)
         if D.tip_radius + G.tip_radius + limits.tip_gap > length:
             break  # Eq 12 fails from here on: every larger n only grows the gears
+        if best_key is not None and max(td, tg) > best_key[0]:
+            break  # every larger n only makes a larger largest gear
+        if rules is not None:
+            broken = _gear_broken(D, rules) or _gear_broken(G, rules)
+            if broken:
+                turned.update(broken)
+                continue
         # the reach grows with T_M by about one module per tooth: start a little under the
         # unshifted estimate m/2 (T_D + 2 T_M + T_G) = S + reach instead of at zmin
         guess = math.floor(((length + limits.idler_reach) * 2 / system.module - td - tg) / 2) - 3
+        first = None
         for tm in range(max(zmin, guess), 1000):
-            M = make_gear(tm, system)
-            if centre_distance(D, M) + centre_distance(M, G) >= length + limits.idler_reach:
-                key = (max(td, tm, tg), td + tm + tg)
-                if best_key is None or key < best_key:
-                    best, best_key = (td, tm, tg), key
+            if first is not None and tm > first + IDLER_TRIES:
                 break
+            M = make_gear(tm, system)
+            if centre_distance(D, M) + centre_distance(M, G) < length + limits.idler_reach:
+                continue
+            first = tm if first is None else first
+            key = (max(td, tm, tg), td + tm + tg)
+            if best_key is not None and key >= best_key:
+                break
+            if rules is not None:
+                broken = _gear_broken(M, rules) or _mesh_broken(D, M, rules) or _mesh_broken(M, G, rules)
+                if broken:
+                    turned.update(broken)
+                    continue
+            best, best_key = (td, tm, tg), key
+            break
+    return best, zmin, turned
+
+
+def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> Stage:
+    """``teeth: auto`` for one stage: T_D/T_G equal to the Eq 11 ratio exactly, Eq 12 and the idler's
+    reach met with the margins of ``limits``, every gear at least the printable minimum, and every
+    rule of ``limits.rules`` (tip-to-root clearance, contact ratio, involute interference, tip
+    width) met by both meshes and all three gears — the rules `partgen check` holds the kit to.
+
+    Among feasible choices, the one with the smallest largest gear (then the fewest teeth) wins:
+    it keeps plates and gears small. (On the paper's link 1 this objective without margins gives
+    exactly the paper's 80/80/40.) When the smallest idler that reaches breaks a rule, larger ones
+    are tried. Raises DesignError when no integers work, naming the rules that turned candidates
+    away and settings that would work.
+    """
+    best, zmin, turned = _search(length, ratio, system, limits)
     if best is None:
+        counts = ", ".join(f"{r} × {n}" for r, n in turned.most_common())
+        why = f"; the teeth that met them broke rules `partgen check` holds the kit to ({counts})" if turned else ""
         raise DesignError(
             f"link {j} (S = {length:.3f} mm): no whole teeth give the Eq 11 ratio {ratio} with D and G "
             f"at least {zmin} teeth and their tips {limits.tip_gap:g} mm apart at module "
-            f"{system.module:g} mm; use a smaller module or a larger scale", "teeth")
+            f"{system.module:g} mm{why}; {_what_works(length, ratio, system, limits)}", "teeth")
     return make_stage(j, length, ratio, best, system)
+
+
+def _what_works(length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> str:
+    """Settings that would let ``choose_stage`` find teeth for this link, in words: the ISO 53 tooth
+    proportions (when the rules need them), a smaller module, a longer link."""
+    from dataclasses import replace
+
+    def works(length_: float, system_: ToothSystem) -> bool:
+        try:
+            return _search(length_, ratio, system_, limits)[0] is not None
+        except DesignError:
+            return False
+
+    found = []
+    std = replace(system, addendum_coeff=1.0, dedendum_coeff=1.25, cutter_tip_coeff=0.38)
+    if std != system and works(length, std):  # the proportions are what breaks the rules
+        return "would work: ISO 53 tooth proportions (addendum_coeff 1, dedendum_coeff 1.25, cutter_tip_radius_coeff 0.38)"
+    for f in (0.9, 0.8, 0.7, 0.6):
+        m = math.floor(system.module * f / 0.05) * 0.05
+        if 0 < m < system.module and works(length, replace(system, module=round(m, 2))):
+            found.append(f"gears.module_mm ≤ {m:.2f}")
+            break
+    for f in (1.1, 1.25, 1.5, 2.0):
+        if works(length * f, system):
+            found.append(f"the link {f:g}× as long ({length * f:.1f} mm: a scale {f:g}× larger)")
+            break
+    return ("would work: " + "; or ".join(found)) if found else \
+        "no module down to 0.6× this one, nor a link up to twice as long, works"
 
 
 def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:
@@ -211,4 +309,6 @@ def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:
         if g.undercut:
             out.append(Finding("info", "undercut", f"link {stage.j}: {name} ({g.teeth} teeth, x = {g.profile_shift:g}) "
                                "is undercut: the cutter removes the foot of the involute", key))
+    for b in stage_breaches(D, M, G, limits.rules):
+        out.append(Finding("warning", b.rule, f"link {stage.j}: {b.message}", key))
     return out

@@ -16,6 +16,7 @@ from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
 from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
+from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
 
 __all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize",
@@ -36,6 +37,9 @@ class Joints:
 
 @dataclass(frozen=True)
 class PrinterLimits:
+    """A printer's profile (mm). ``min_hole``: the smallest hole that runs reliably on a pin or
+    axle; ``min_hole_to_size``: the smallest hole it holds to size (a press-fit D, a pen bore)."""
+
     name: str
     envelope: tuple[float, float, float]
     resolution: float
@@ -43,6 +47,7 @@ class PrinterLimits:
     min_gear: float
     min_link: float
     min_wall: float
+    min_hole_to_size: float = 3.0
 
 
 @dataclass(frozen=True)
@@ -87,7 +92,9 @@ class KitParams:
 
     @property
     def min_root_diameter(self) -> float:
-        return self.bore + 2 * self.hub_wall
+        """Root circle that keeps ``hub_wall`` around a gear's largest hole: its running bore or its
+        press-fit D-hole, mm."""
+        return max(self.bore, self.joints.axle_diameter + self.joints.press_clearance) + 2 * self.hub_wall
 
 
 @dataclass(frozen=True)
@@ -152,28 +159,14 @@ def pitch_diameter_belt(teeth: int, profile: BeltProfile) -> float:
     return _pd(teeth, profile.pitch)
 
 
-def check_generable(gear: GearSpec) -> None:
-    """Raise DesignError (naming the config key) if the rack cannot generate this gear: cutter tip
-    fillets that overlap, a tip inside the base circle, a pointed tooth."""
-    s = gear.system
-    try:
-        involute.gear_outline(gear.teeth, s.module, s.pressure_angle, gear.profile_shift, s.backlash_per_gear,
-                              s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05)
-    except ValueError as e:
-        msg = str(e)
-        key = ("gears.cutter_tip_radius_coeff" if msg.startswith("rho") else
-               "gears.profile_shift" if "pointed" in msg else "gears.addendum_coeff" if msg.startswith("ha") else "gears")
-        raise DesignError(f"a {gear.teeth}-tooth gear (x = {gear.profile_shift:.4g}) cannot be generated: {msg}",
-                          key) from None
-
-
 def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings."""
     links = inputs.chain.links
     if len(links) < 1:
         raise DesignError("the chain has no links", "links")
     system = params.system
-    limits = Limits(params.printer.min_gear, params.min_root_diameter, inputs.tip_gap, inputs.idler_reach)
+    limits = Limits(params.printer.min_gear, params.min_root_diameter, inputs.tip_gap, inputs.idler_reach,
+                    gear_rules(params))
     findings: list[Finding] = []
     for j, link in enumerate(links, 1):
         if link.length < params.printer.min_link - 1e-9:
@@ -199,6 +192,7 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
             stages.append(st)
             findings += verify_stage(st, limits, f"teeth[{j - 1}]")
     G1, drive, drive_centre = _drive(params)
+    findings += drive_findings(G1, drive, limits.rules) + kit_findings(params)
     distinct = {(g.teeth, g.profile_shift): g for s in stages for g in (s.D, s.M, s.G)}
     for g in distinct.values():
         check_generable(g)
@@ -234,6 +228,54 @@ def _budget(gears: list[GearSpec]) -> None:
                           f"use at least {need:.2g} mm", "gears.chord_tolerance_mm")
 
 
+HOLE_EXCESS = 0.01  # mm: a hole's polygon circumscribes its circle by up to the features' chord tolerance
+PEN_BORE_CLEARANCE = 0.2  # mm, diametral: the pen holder's bore over the pen
+
+
+def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[Finding]:
+    """Warnings for the printer's hole and wall rules (design.rules) that the given sizes break:
+    the joints' bores, the holes held to size, the hub and boss walls, the tensioner rollers."""
+    pr, jn = params.printer, params.joints
+    out = []
+
+    def add(b, key, hint):
+        if b is not None:
+            out.append(Finding("warning", b.rule, f"{b.message}: {hint}", key))
+
+    add(hole_breach(params.bore, True, pr.min_hole, pr.min_hole_to_size), "joints.axle_diameter_mm",
+        f"gears and plates turn on the axles in bores of Ø{params.bore:.2f} mm (axle + running clearance); "
+        f"use an axle of at least {pr.min_hole - jn.running_clearance:.2f} mm")
+    add(hole_breach(jn.axle_diameter + jn.press_clearance, False, pr.min_hole, pr.min_hole_to_size),
+        "joints.axle_diameter_mm", "the D-holes that press onto the axles")
+    add(hole_breach(params.pen_diameter + PEN_BORE_CLEARANCE, False, pr.min_hole, pr.min_hole_to_size),
+        "pen.diameter_mm", "the pen holder's bore")
+    wall = params.hub_wall - max(0.0, jn.press_clearance - jn.running_clearance) / 2 - HOLE_EXCESS
+    add(wall_breach(wall, pr.min_wall), "gears.hub_wall_mm",
+        f"the gears' walls around their bores; use hub_wall_mm ≥ {pr.min_wall + params.hub_wall - wall:.2f}")
+    wall = params.boss_wall - jn.press_clearance / 2 - HOLE_EXCESS
+    add(wall_breach(wall, pr.min_wall), "plates.boss_wall_mm",
+        f"the plates' and the crank's walls around their D-holes; use boss_wall_mm ≥ "
+        f"{pr.min_wall + params.boss_wall - wall:.2f}")
+    if belts is not None:
+        wall = belts.tensioner_radius - params.bore / 2 - HOLE_EXCESS
+        add(wall_breach(wall, pr.min_wall), "belts.tensioner_radius_mm",
+            f"the tensioner rollers' walls around their bores; use tensioner_radius_mm ≥ "
+            f"{pr.min_wall + belts.tensioner_radius - wall:.2f}")
+    return out
+
+
+def gear_rules(params: KitParams) -> GearRules:
+    """The gear and mesh rules of a kit: its check settings on its printer."""
+    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.resolution)
+
+
+def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Finding]:
+    """Warnings for the drive pair (teeth given by ``drive.teeth``): the rules it breaks."""
+    broken = gear_breaches(G1, rules, f"G1 and the drive gear ({G1.teeth})") + mesh_breaches(
+        G1, drive, centre_distance(G1, drive), rules, ("G1", "the drive gear"))
+    return [Finding("warning", b.rule, f"drive: {b.message}", "drive.teeth") for b in broken]
+
+
 def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
     """G1 and the drive gear (same teeth: one crank turn per cycle) and where the drive sits."""
     G1 = make_gear(params.drive_teeth, params.system)
@@ -257,7 +299,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
     z_min = 10
     while True:
         root = pitch_diameter_belt(z_min, b.profile) / 2 - b.profile.pitch_line_offset - b.profile.groove_depth
-        if root >= params.bore / 2 + params.hub_wall:
+        if root >= params.min_root_diameter / 2:
             break
         z_min += 1
     links = list(inputs.chain.links)
@@ -272,6 +314,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
             findings.append(Finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
                                     f"{st.link_change:+.3f} mm so a {st.belt_teeth}-tooth belt fits", "belts"))
     G1, drive, drive_centre = _drive(params)
+    findings += drive_findings(G1, drive, gear_rules(params)) + kit_findings(params, b)
     chain = Chain(tuple(links), inputs.chain.offset)
     return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
                      True, inputs.source, tuple(stages), inputs.chain)

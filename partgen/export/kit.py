@@ -14,12 +14,12 @@ import trimesh
 
 from ..assembly.kit import Kit
 from ..geometry.parts import Part
-from ..geometry.solid import mesh_arrays
+from ..errors import MeshError
+from ..geometry.solid import mesh_arrays, print_arrays
 from .outputs import OutputClaim, atomic_dir
+from .verify import mesh_report, read_stl
 
-__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "write_kit", "atomic_dir"]
-
-FLIP = np.diag([1.0, -1.0, -1.0, 1.0])  # half a turn about x: prints a part upside down
+__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "verify_parts", "write_kit", "atomic_dir"]
 
 
 @dataclass(frozen=True)
@@ -34,11 +34,7 @@ class PrintedPart:
 
 def printed(part: Part) -> PrintedPart:
     """Lay a part on the build plate (flipped if it prints upside down, lowest point at z = 0)."""
-    v, f = mesh_arrays(part.solid)
-    print_from_local = FLIP.copy() if part.print_flip else np.eye(4)
-    v = v @ print_from_local[:3, :3].T
-    print_from_local[2, 3] = -v[:, 2].min()
-    v[:, 2] -= v[:, 2].min()
+    v, f, print_from_local = print_arrays(part.solid, part.print_flip)
     # the mesh exactly as the STL stores it (float32), so the manifest describes the file
     mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
     stl = trimesh.exchange.stl.export_stl(mesh)
@@ -118,10 +114,24 @@ def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] =
     return scene.export(file_type="glb")
 
 
+def verify_parts(groups: list[list[PrintedPart]], design_name: str) -> None:
+    """Read every distinct STL back as a slicer does (export.verify) and raise ``MeshError``, naming
+    the design and each bad part, unless every one is a single closed, oriented manifold shell."""
+    bad = []
+    for g in groups:
+        report = mesh_report(*read_stl(g[0].stl))
+        if not report.ok:
+            bad.append(f"{g[0].part.name} ({', '.join(report.problems())})")
+    if bad:
+        raise MeshError(f"design {design_name}: {len(bad)} part(s) would be written as a mesh that is not one closed, "
+                        f"oriented manifold shell: {'; '.join(bad)} — a bug in partgen; nothing was written")
+
+
 def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dict[str, bytes] | None = None,
               progress=None) -> dict:
     """Write the kit into ``dest`` (a folder, or an ``OutputClaim`` checked before the build)
-    atomically; returns the manifest."""
+    atomically; returns the manifest. Every distinct STL is verified first (``verify_parts``): a bad
+    part raises ``MeshError`` and nothing is written."""
     say = progress or (lambda name: None)
     items, done = [], {}
     for p in (p for p in kit.parts if p.printed):
@@ -131,6 +141,7 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
             done[key] = printed(p)
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
+    verify_parts(groups, str(design.get("name", kit.params.name)))
     man = manifest(kit, groups, design)
     bought = [p for p in kit.parts if not p.printed]
     if bought:

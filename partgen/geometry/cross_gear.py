@@ -20,7 +20,7 @@ from .solid import SLIVER, cross_section
 
 __all__ = ["tooth_count_ok", "ring_gear", "cross_gear", "equatorial_error"]
 
-PINCH_DEG = 1e-4
+GROW = 0.01  # mm: the second ring set's profile is grown by this (see cross_gear)
 
 
 def tooth_count_ok(teeth: int) -> bool:
@@ -28,10 +28,13 @@ def tooth_count_ok(teeth: int) -> bool:
     return teeth % 4 == 0
 
 
-def ring_gear(spec: GearSpec, segments: int) -> m3d.Manifold:
-    """The profile of ``spec`` (in the xy plane, tooth 0 on +x) revolved about the x axis."""
+def ring_gear(spec: GearSpec, segments: int, grow: float = 0.0) -> m3d.Manifold:
+    """The profile of ``spec`` (in the xy plane, tooth 0 on +x), grown outward by ``grow`` mm,
+    revolved about the x axis."""
     outline = Polygon(gear_outline(spec).points)
-    r = spec.tip_radius * 1.1
+    if grow:
+        outline = outline.buffer(grow, join_style="mitre")
+    r = spec.tip_radius * 1.1 + grow
     upper = shapely.intersection(outline, box(-r, 0.0, r, r))  # y ≥ 0: the half that revolves
     pts = np.asarray(shapely.geometry.polygon.orient(upper, 1.0).exterior.coords)[:-1]
     # cross-section coordinates: X = distance from the axis (the gear's y), Y = along the axis (its x)
@@ -41,17 +44,22 @@ def ring_gear(spec: GearSpec, segments: int) -> m3d.Manifold:
     return solid.rotate((0.0, 90.0, 0.0))  # z → x: the ring axis on x
 
 
-def cross_gear(spec: GearSpec, segments: int = 0) -> m3d.Manifold:
-    """The cross gear: the ring gear about x intersected with the ring gear about y."""
+def cross_gear(spec: GearSpec, segments: int = 0, grow: float = GROW) -> m3d.Manifold:
+    """The cross gear: the ring gear about x intersected with the ring gear about y.
+
+    The two ring sets coincide wherever both are bounded by the same surface — the tip sphere
+    where tooth tips of both sets meet, the root sphere where root lands meet, the flanks along the
+    equator — and there two differently tessellated copies of one surface cross each other at
+    random: a solid that pinches shut, or slivers thinner than a float32 STL resolves. So the set
+    about y is grown by ``grow`` mm (default GROW, a tenth of the printer's road): wherever the
+    two coincided the set about x bounds the gear alone, and the equatorial section stays the
+    profile exactly (P ∩ P grown = P). Elsewhere the set about y bounds it, ``grow`` proud."""
     if not tooth_count_ok(spec.teeth):
         raise ValueError(f"a cross gear needs a multiple of 4 teeth (the section through both ring axes must be "
                          f"the 2-D profile), got {spec.teeth}")
     segments = segments or max(96, 4 * spec.teeth)
     rx = ring_gear(spec, segments)
-    # The two ring sets touch each other exactly along lines in the planes of the axes; a solid
-    # that touches itself there is valid for manifold but pinches shut once its STL vertices are
-    # merged. Turning the second set by PINCH_DEG (~5e-5 mm at the tip) parts the sheets.
-    ry = rx.rotate((0.0, 0.0, 90.0 + PINCH_DEG))
+    ry = ring_gear(spec, segments, grow).rotate((0.0, 0.0, 90.0))
     return (rx ^ ry).simplify(SLIVER)
 
 

@@ -15,14 +15,14 @@ import manifold3d as m3d
 import numpy as np
 import shapely
 from shapely import affinity
-from shapely.geometry import Polygon
+from shapely.geometry import Polygon, box
 
 from ..design.gearing import GearSpec
 from .gear import gear_body
 from .outline import circle, d_shape, hull_of_discs
-from .solid import extrude, prisms, union
+from .solid import extrude, prisms, slab, union
 
-__all__ = ["Part", "DFit", "fixed_gear", "bored_gear", "link_plate", "base_plate", "leg", "drive_axle", "crank",
+__all__ = ["Part", "DFit", "fixed_gear", "bored_gear", "link_plate", "base_plate", "leg", "shaft", "drive_axle", "crank",
            "pen_holder"]
 
 FLAT_DEPTH = 1.0  # mm: a D's flat sits this far inside its circle
@@ -122,22 +122,25 @@ def belt_band(path: np.ndarray, inside: float, outside: float, z0: float, z1: fl
 def link_plate(length: float, thickness: float, proximal_hole: Polygon, proximal_r: float,
                distal: tuple[float, float], idler: tuple[tuple[float, float], float] | None,
                features: list[tuple[Polygon, float, float]], tol: float,
-               distal_hole: Polygon | None = None) -> m3d.Manifold:
+               distal_hole: Polygon | None = None, solids: list[m3d.Manifold] = ()) -> m3d.Manifold:
     """A link plate in its link frame (proximal joint at the origin, distal at (length, 0), bottom
     at z = 0): the hull of its bosses (proximal radius, (distal radius), (idler centre, radius)),
-    holes cut through, and ``features`` (outline, z0, z1) — posts, pins, thrust rings — on top."""
+    holes cut through, and ``features`` (outline, z0, z1) — pins, thrust rings — and ``solids``
+    (posts, see ``shaft``) on top."""
     discs = [((0.0, 0.0), proximal_r), ((length, 0.0), distal[1])]
     if idler is not None:
         discs.append(idler)
     outline = hull_of_discs(discs, max(tol, 0.01)).difference(proximal_hole)
     if distal_hole is not None:
         outline = outline.difference(distal_hole)
-    return union([extrude(outline, thickness)] + ([prisms(features)] if features else []))
+    return union([extrude(outline, thickness)] + ([prisms(features)] if features else []) + list(solids))
 
 
-def base_plate(outline: Polygon, thickness: float, features: list[tuple[Polygon, float, float]]) -> m3d.Manifold:
-    """The base: ``outline`` (holes included) from z = -thickness to 0, ``features`` above."""
-    return union([extrude(outline, thickness, -thickness), prisms(features)])
+def base_plate(outline: Polygon, thickness: float, features: list[tuple[Polygon, float, float]],
+               solids: list[m3d.Manifold] = ()) -> m3d.Manifold:
+    """The base: ``outline`` (holes included) from z = -thickness to 0, ``features`` and ``solids``
+    (the ground post, see ``shaft``) above."""
+    return union([extrude(outline, thickness, -thickness), prisms(features), *solids])
 
 
 def leg(radius: float, height: float, peg_radius: float, peg_height: float, tol: float) -> m3d.Manifold:
@@ -145,9 +148,27 @@ def leg(radius: float, height: float, peg_radius: float, peg_height: float, tol:
     return prisms([(circle(radius, tol), -height, 0.0), (circle(peg_radius, tol), 0.0, peg_height)])
 
 
+def shaft(fit: DFit, sections: list[tuple[str, float, float]], tol: float, centre=(0.0, 0.0)) -> m3d.Manifold:
+    """A shaft of radius ``fit.radius`` along z through ``centre``: consecutive sections ("round" |
+    "D", z0, z1), the D ones with their flat (on the -y side, as ``DFit.shaft``).
+
+    The flats are cut from one round prism by boxes, never a D prism stacked on a round one: a D's
+    corners lie on the round prism's wall only to rounding, and their union leaves edges of 1e-10
+    mm that fold once written as float32. A cutter's face ends inside the shaft, or 1 mm past its
+    end, so no two faces are near-coincident."""
+    r, flat = fit.radius, fit.radius - FLAT_DEPTH
+    z_lo, z_hi = sections[0][1], sections[-1][2]
+    cx, cy = centre
+    cutters = [slab(box(cx - r - 1.0, cy - r - 1.0, cx + r + 1.0, cy - flat),
+                    z0 - (1.0 if z0 == z_lo else 0.0), z1 + (1.0 if z1 == z_hi else 0.0))
+               for kind, z0, z1 in sections if kind == "D"]
+    round_ = slab(circle(r, tol, centre), z_lo, z_hi)
+    return round_ - union(cutters) if cutters else round_
+
+
 def drive_axle(fit: DFit, sections: list[tuple[str, float, float]], tol: float) -> m3d.Manifold:
     """A shaft along z: sections ("round" | "D", z0, z1) of radius ``fit.radius``."""
-    return prisms([(circle(fit.radius, tol) if kind == "round" else fit.shaft(tol), z0, z1) for kind, z0, z1 in sections])
+    return shaft(fit, sections, tol)
 
 
 def crank(fit: DFit, radius: float, thickness: float, hub_r: float, handle_r: float, handle_len: float,

@@ -7,7 +7,8 @@ import manifold3d as m3d
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-__all__ = ["cross_section", "extrude", "union", "prisms", "mesh_arrays"]
+__all__ = ["cross_section", "extrude", "slab", "union", "prisms", "mesh_arrays", "FLIP", "print_arrays",
+           "float32_sound"]
 
 
 def _rings(geom) -> list[np.ndarray]:
@@ -34,6 +35,24 @@ def extrude(geom, height: float, z0: float = 0.0) -> m3d.Manifold:
     return m3d.Manifold.extrude(cs, height).translate((0.0, 0.0, z0))
 
 
+def slab(geom, z0: float, z1: float) -> m3d.Manifold:
+    """Prism of the outline from exactly z0 to exactly z1 (z1 > z0), mm.
+
+    Stacked prisms must share their faces exactly: z0 + (z1 - z0) can miss z1 by an ulp, and a
+    prism whose top is an ulp under the next one's bottom is a separate shell touching it, which
+    a float32 STL welds into non-manifold edges. Such a top is snapped onto z1."""
+    solid = extrude(geom, z1 - z0, z0)
+    if z0 + (z1 - z0) == z1:
+        return solid
+    mid = 0.5 * (z0 + z1)
+
+    def snap(v):
+        v = np.array(v, dtype=np.float64)
+        v[:, 2] = np.where(v[:, 2] > mid, z1, z0)
+        return v
+    return solid.warp_batch(snap)
+
+
 SLIVER = 1e-6  # mm: edges shorter than this, left where solids meet face to face, are collapsed
 
 
@@ -54,4 +73,30 @@ def mesh_arrays(solid: m3d.Manifold) -> tuple[np.ndarray, np.ndarray]:
 
 def prisms(items) -> m3d.Manifold:
     """Union of prisms; items: iterable of (outline, z0, z1) with z1 > z0, mm."""
-    return union([extrude(g, z1 - z0, z0) for g, z0, z1 in items])
+    return union([slab(g, z0, z1) for g, z0, z1 in items])
+
+
+FLIP = np.diag([1.0, -1.0, -1.0, 1.0])  # half a turn about x: prints a part upside down
+
+
+def print_arrays(solid: m3d.Manifold, flip: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A solid laid on the build plate (flipped if it prints upside down, lowest point at z = 0):
+    vertices (n, 3) float64 mm, faces (m, 3), and the (4, 4) print-from-local pose."""
+    v, f = mesh_arrays(solid)
+    print_from_local = FLIP.copy() if flip else np.eye(4)
+    v = v @ print_from_local[:3, :3].T
+    print_from_local[2, 3] = -v[:, 2].min()
+    v[:, 2] -= v[:, 2].min()
+    return v, f, print_from_local
+
+
+def float32_sound(verts: np.ndarray, faces: np.ndarray) -> bool:
+    """Whether a manifold mesh (verts (n, 3) mm, faces (m, 3)) stays one as a float32 STL: no two
+    vertices round to the same float32 point and no face to three points in a line. (A 3-D
+    boolean of curved solids leaves, now and then, two intersection vertices 1e-7 mm apart.)"""
+    v32 = np.asarray(verts).astype(np.float32) + np.float32(0.0)
+    if len(np.unique(v32, axis=0)) != len(v32):
+        return False
+    t = v32[faces].astype(np.float64)
+    return bool(np.all(np.any(np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]) != 0.0, axis=1)))
+

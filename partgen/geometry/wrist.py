@@ -72,24 +72,32 @@ def dome_teeth(rows: Sequence[tuple[float, int]], radius_of: Callable[[np.ndarra
     return out
 
 
-def dome_solid(domes: Sequence[Dome], grow: float, segments: int) -> list[m3d.Manifold]:
-    return [m3d.Manifold.sphere(d.radius + grow, segments).translate(d.centre) for d in domes]
+def _ball(radius: float, segments: int, turn: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> m3d.Manifold:
+    """A tessellated sphere about the origin, its facets turned by ``turn`` (deg about x, y, z)."""
+    ball = m3d.Manifold.sphere(radius, segments)
+    return ball.rotate(turn) if any(turn) else ball
 
 
-def domes_union(domes: Sequence[Dome], grow: float = 0.0, segments: int = 32) -> m3d.Manifold:
-    """All domes as one solid (radius + ``grow``)."""
-    return m3d.Manifold.batch_boolean(dome_solid(domes, grow, segments), m3d.OpType.Add)
+def dome_solid(domes: Sequence[Dome], grow: float, segments: int, turn=(0.0, 0.0, 0.0)) -> list[m3d.Manifold]:
+    return [_ball(d.radius + grow, segments, turn).translate(d.centre) for d in domes]
+
+
+def domes_union(domes: Sequence[Dome], grow: float = 0.0, segments: int = 32, turn=(0.0, 0.0, 0.0)) -> m3d.Manifold:
+    """All domes as one solid (radius + ``grow``); ``turn``: the spheres' facets turned (deg), the
+    same domes tessellated differently."""
+    return m3d.Manifold.batch_boolean(dome_solid(domes, grow, segments, turn), m3d.OpType.Add)
 
 
 def socket_sweep(domes: Sequence[Dome], poses: np.ndarray, grow: float, reach: float, segments: int,
-                 batch: int = 256) -> tuple[m3d.Manifold, int]:
+                 batch: int = 256, turn=(0.0, 0.0, 0.0)) -> tuple[m3d.Manifold, int]:
     """Union of gear 1's domes (radius + ``grow``) as seen from gear 2 over a grid of poses.
 
     poses : (a, b, 4, 4) gear-2-from-gear-1 transforms on an (θ, ψ) grid; consecutive θ of one ψ are
     joined by the convex hull of the two instances (a continuous sweep along θ).
     reach : domes whose centre lies farther than this from gear 2's centre cannot touch it and are
     skipped (the clip). Batches of ``batch`` pieces are unioned at a time (the batch), which keeps
-    memory bounded. Returns the swept solid and how many pieces went into it."""
+    memory bounded. ``turn``: the spheres' facets turned (deg), the same sweep tessellated
+    differently. Returns the swept solid and how many pieces went into it."""
     base = [np.array(d.centre) for d in domes]
     rads = [d.radius + grow for d in domes]
     pieces: list[m3d.Manifold] = []
@@ -112,7 +120,7 @@ def socket_sweep(domes: Sequence[Dome], poses: np.ndarray, grow: float, reach: f
                 if np.linalg.norm(p) - r > reach:
                     prev = None
                     continue
-                s = m3d.Manifold.sphere(r, segments).translate(tuple(p))
+                s = _ball(r, segments, turn).translate(tuple(p))
                 pieces.append(s if prev is None else m3d.Manifold.batch_hull([prev, s]))
                 count += 1
                 prev = s
