@@ -97,7 +97,7 @@ def design_summary(loaded: Loaded, kit: Kit) -> dict:
 
 
 def finding_dict(f: Finding) -> dict:
-    return {"severity": f.severity, "code": f.code, "key": f.key_path, "message": f.message}
+    return {"severity": f.severity, "code": f.rule, "key": f.key, "message": f.message}
 
 
 def output_claim(raw, dest, kind: str, default_sub: str | None, option: str, notify=None):
@@ -148,7 +148,7 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
     """Check a design (CONFIG) or a built kit (KITDIR, re-derived from its design.yaml and compared
     byte for byte). Lays the parts out on build plates and writes a 3MF and a picture per plate.
     Returns (Loaded, Kit, Result, plates folder or None)."""
-    from .checks.findings import Finding
+    from .core.findings import Finding
     from .checks.run import check_kit
     from .export.kit import atomic_dir, group_parts, printed
     from .export.plates import plate_3mf
@@ -198,7 +198,7 @@ def check(target: str | Path, samples: int | None = None, progress=None, plates_
 def plan_plates(loaded: Loaded, groups, result):
     """Pack the printed parts on build plates; adds a finding if one cannot fit. Returns the
     layout (or None) and a function that draws it to a PNG path."""
-    from .checks.findings import Finding
+    from .core.findings import Finding
     from .export.plates import footprint, layout, plate_picture
 
     env = loaded.params.printer.envelope

@@ -140,7 +140,7 @@ def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
     """Balance over the input grid, interference over the workspace, stacks, pins, printing, the
     base, printer fit; for a kit folder also that its STLs are what its design.yaml builds."""
     from .checks.bennett import check_bennett
-    from .checks.findings import Finding
+    from .core.findings import Finding
     from .export.kit import printed
 
     loaded, kit = _kit(raw)

@@ -78,7 +78,7 @@ def test_auto_teeth_pass_the_checks_rules(tmp_path, name):
     rules = gear_rules(loaded.params)
     for s in mech.stages:
         assert stage_breaches(s.D, s.M, s.G, rules) == [], s.j
-    assert not [f for f in mech.findings if f.severity == "warning"]
+    assert not [f for f in mech.findings if f.severity == "warn"]
     kit = build_kit(mech, loaded.params)
     assert rule_failures(kit) == []
 
@@ -106,7 +106,7 @@ def test_hand_given_teeth_breaking_a_rule_warn_with_the_checks_rule(tmp_path):
     """The paper's table with addendum 1.1: build warns (code = rule) and check fails that rule."""
     path = design(tmp_path, "butterfly_liu2017", gears={"addendum_coeff": 1.1})
     loaded = pipeline.load(path)
-    warned = {f.code for f in loaded.mechanism.findings if f.severity == "warning"}
+    warned = {f.rule for f in loaded.mechanism.findings if f.severity == "warn"}
     failed = {rule for rule, _ in rule_failures(build_kit(loaded.mechanism, loaded.params))}
     assert failed & RULES, failed
     assert failed & RULES <= warned, (failed, warned)
@@ -122,15 +122,15 @@ def test_pen_bore_is_held_to_size_not_to_the_joint_hole_minimum(tmp_path):
     printer["min_hole_to_size_diameter_mm"] = 9.0
     (tmp_path / "p.yaml").write_text(yaml.safe_dump(printer))
     loaded = pipeline.load(design(tmp_path, printer=tmp_path / "p.yaml", pen={"diameter_mm": 8.0}))
-    warned = [f for f in loaded.mechanism.findings if f.severity == "warning"]
-    assert [(f.code, f.key_path) for f in warned] == [("hole-to-size", "pen.diameter_mm")]
+    warned = [f for f in loaded.mechanism.findings if f.severity == "warn"]
+    assert [(f.rule, f.key) for f in warned] == [("hole-to-size", "pen.diameter_mm")]
     fails = rule_failures(build_kit(loaded.mechanism, loaded.params), 2)
     assert [r for r, _ in fails] == ["hole-to-size"] and "pen_holder" in fails[0][1] and "8.2" in fails[0][1]
 
 
 def test_a_bore_that_runs_on_a_pin_is_held_to_the_joint_hole_minimum(tmp_path):
     loaded = pipeline.load(design(tmp_path, joints={"axle_diameter_mm": 9.5}))
-    warned = {(f.code, f.key_path) for f in loaded.mechanism.findings if f.severity == "warning"}
+    warned = {(f.rule, f.key) for f in loaded.mechanism.findings if f.severity == "warn"}
     assert ("hole", "joints.axle_diameter_mm") in warned
     fails = rule_failures(build_kit(loaded.mechanism, loaded.params), 2)
     holes = {m.split(":")[0] for r, m in fails if r == "hole"}
@@ -142,8 +142,8 @@ def test_thin_hub_wall_is_warned_and_the_boss_keeps_the_printers_wall(tmp_path):
     """hub_wall 1.9 mm: the D-boss (half the hub wall under its flat) would leave 0.95 mm; it is
     made at least the printer's 1 mm by construction, and no part has a wall under 1 mm."""
     loaded = pipeline.load(design(tmp_path, gears={"hub_wall_mm": 1.9}))
-    assert not [f for f in loaded.mechanism.findings if f.severity == "warning"]
+    assert not [f for f in loaded.mechanism.findings if f.severity == "warn"]
     fails = rule_failures(build_kit(loaded.mechanism, loaded.params), 2)
     assert not [m for r, m in fails if r == "wall"], fails
     loaded = pipeline.load(design(tmp_path, gears={"hub_wall_mm": 0.9}))
-    assert ("wall", "gears.hub_wall_mm") in {(f.code, f.key_path) for f in loaded.mechanism.findings}
+    assert ("wall", "gears.hub_wall_mm") in {(f.rule, f.key) for f in loaded.mechanism.findings}

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import manifold3d as m3d
 import numpy as np
 
+from ..core.transforms import frame_z
 from ..design import bennett_butterfly as bbf
 from ..design.bennett_butterfly import BennettParams
 from ..geometry.bennett_link import Cup, base_solid, link_solid, pin_solid
@@ -112,22 +113,11 @@ class BennettKit:
             owner = self.layout.members(j)[0]
             lo, hi = stack(self.params, self.layout, j).pin
             pt, ax = (np.zeros(3), np.array([0.0, 0.0, 1.0])) if owner == BASE else self.bodies[owner][j]
-            local = _axis_frame(pt + (lo + hi) / 2 * ax, ax)
+            local = frame_z(pt + (lo + hi) / 2 * ax, ax)
             out[f"pin_{j}"] = (np.eye(4) if owner == BASE else fr[owner][0]) @ local
         for i, cup in self.cups.items():
-            out[f"fill_link{i:02d}"] = fr[i][0] @ _axis_frame(cup.pocket_centre, np.asarray(cup.axis, float))
+            out[f"fill_link{i:02d}"] = fr[i][0] @ frame_z(cup.pocket_centre, np.asarray(cup.axis, float))
         return out
-
-
-def _axis_frame(origin: np.ndarray, axis: np.ndarray) -> np.ndarray:
-    """(4, 4) frame at ``origin`` whose z is ``axis``."""
-    z = axis / np.linalg.norm(axis)
-    x = np.cross([0.0, 1.0, 0.0] if abs(z[1]) < 0.9 else [1.0, 0.0, 0.0], z)
-    x /= np.linalg.norm(x)
-    T = np.eye(4)
-    T[:3, :3] = np.column_stack([x, np.cross(z, x), z])
-    T[:3, 3] = origin
-    return T
 
 
 def _pin_masses(p: BennettParams, lay: Layout, bodies: dict) -> dict[int, list[tuple[float, np.ndarray]]]:

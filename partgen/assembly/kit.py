@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.transforms import pose_z
 from ..design.kinematics import clockings, gear_poses, joint_positions, link_angles
 from ..design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
 from ..errors import DesignError
@@ -70,11 +71,6 @@ class Contact:
     radial_gap: float = 0.0
 
 
-def _T(x: float = 0.0, y: float = 0.0, z: float = 0.0, angle: float = 0.0) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0, x], [s, c, 0, y], [0, 0, 1, z], [0, 0, 0, 1]], dtype=float)
-
-
 @dataclass(frozen=True)
 class Kit:
     """Parts of a mechanism, and where each one is at any crank angle."""
@@ -98,17 +94,17 @@ class Kit:
         gp = gear_poses(mech, theta, self.clock)
         out = dict(self.static)
         for j in range(1, len(mech.chain.links) + 1):
-            out[f"B{j}"] = _T(J[j - 1][0], J[j - 1][1], st.plate_z(j), a[j])
-        out["pen_holder"] = _T(J[-1][0], J[-1][1], st.plate_z(len(mech.chain.links)), a[-1])
+            out[f"B{j}"] = pose_z(J[j - 1][0], J[j - 1][1], st.plate_z(j), a[j])
+        out["pen_holder"] = pose_z(J[-1][0], J[-1][1], st.plate_z(len(mech.chain.links)), a[-1])
         for name, p in gp.items():
             layer = 0 if name in ("G1", "drive") else int(name[1:]) - (1 if name[0] == "G" else 0)
-            out[name] = _T(p.centre[0], p.centre[1], st.layer(layer), p.angle)
+            out[name] = pose_z(p.centre[0], p.centre[1], st.layer(layer), p.angle)
         for s in mech.belt_stages:  # a belt keeps its shape in its link's frame
-            out[f"belt{s.j}"] = _T(J[s.j - 1][0], J[s.j - 1][1], st.layer(s.j), a[s.j])
+            out[f"belt{s.j}"] = pose_z(J[s.j - 1][0], J[s.j - 1][1], st.layer(s.j), a[s.j])
         drive = gp["drive"]
         for name in ("drive_axle", "crank"):
             z = 0.0 if name == "drive_axle" else -self.params.base_thickness - st.gap
-            out[name] = _T(drive.centre[0], drive.centre[1], z, drive.angle)
+            out[name] = pose_z(drive.centre[0], drive.centre[1], z, drive.angle)
         return out
 
 
@@ -256,8 +252,8 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
              print_flip=True))
 
     contacts = _contacts(mech, params, st, len(legs))
-    static = {"base": _T()}
-    static.update({f"leg{i + 1}": _T(c[0], c[1], -bt) for i, c in enumerate(legs)})
+    static = {"base": pose_z()}
+    static.update({f"leg{i + 1}": pose_z(c[0], c[1], -bt) for i, c in enumerate(legs)})
     return Kit(mech, params, st, tuple(parts), static, clock, contacts)
 
 

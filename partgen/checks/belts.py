@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from ..assembly.kit import Kit, belt_path_of
-from .findings import Finding
+from ..core.findings import Finding
 
 __all__ = ["check_belts", "MIN_TEETH_IN_MESH"]
 

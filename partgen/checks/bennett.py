@@ -27,7 +27,7 @@ from ..geometry.bennett_link import tube
 from ..geometry.measure import intersection, oversize
 from ..geometry.printing import bore_open, footprint, shells
 from ..geometry.solid import mesh_arrays
-from .findings import Finding, Result
+from ..core.findings import Finding, Result
 
 __all__ = ["check_bennett", "balance_figures", "stability"]
 

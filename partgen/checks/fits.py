@@ -13,7 +13,7 @@ import shapely
 
 from ..assembly.kit import Kit
 from ..geometry.measure import intersection, place2d
-from .findings import Finding
+from ..core.findings import Finding
 from .motion import PartGeometry
 
 __all__ = ["check_fits"]

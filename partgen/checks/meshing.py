@@ -19,20 +19,10 @@ from ..design.gearing import centre_distance
 from ..design.mechanism import gear_rules
 from ..geometry.gear import gear_outline
 from ..geometry.measure import place2d
-from .findings import Finding
+from ..core.findings import Finding
+from ..core.transforms import turn_about
 
 __all__ = ["check_meshes"]
-
-
-def _rot(T: np.ndarray, angle: float, centre) -> np.ndarray:
-    """T followed by a turn of ``angle`` about the vertical axis through ``centre`` (world)."""
-    c, s = math.cos(angle), math.sin(angle)
-    R = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
-    shift = np.eye(4)
-    shift[:2, 3] = centre
-    back = np.eye(4)
-    back[:2, 3] = -np.asarray(centre)
-    return shift @ R @ back @ T
 
 
 class _Pair:
@@ -67,7 +57,7 @@ def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
         return 0.0
     for _ in range(40):
         mid = (lo + hi) / 2
-        if pair.overlap(Ta, _rot(Tb, direction * mid, cb))[0] > 1e-9:
+        if pair.overlap(Ta, turn_about(Tb, (0.0, 0.0, 1.0), (cb[0], cb[1], 0.0), direction * mid))[0] > 1e-9:
             hi = mid
         else:
             lo = mid

@@ -18,7 +18,7 @@ import shapely
 
 from ..assembly.kit import Kit
 from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs
-from .findings import Finding
+from ..core.findings import Finding
 
 __all__ = ["PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
 

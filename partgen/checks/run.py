@@ -9,7 +9,7 @@ import numpy as np
 
 from ..assembly.kit import Kit
 from ..geometry.solid import mesh_arrays
-from .findings import Finding, Result
+from ..core.findings import Finding, Result
 from .fits import check_fits
 from .meshing import check_meshes
 from .motion import prepare, sample_angles, sweep
@@ -36,10 +36,10 @@ def check_kit(kit: Kit, samples: int | None = None, progress=None) -> Result:
     res = Result()
     t0 = time.perf_counter()
     for f in kit.mechanism.findings:
-        if f.severity == "warning":
-            res.add(Finding("design", "fail", f"{f.key_path}: {f.message}"))
+        if f.severity == "warn":
+            res.add(Finding("design", "fail", f"{f.key}: {f.message}"))
         else:
-            res.add(Finding("design", "info", f"{f.key_path}: {f.message}"))
+            res.add(Finding("design", "info", f"{f.key}: {f.message}"))
     thetas = sample_angles(samples or kit.params.checks.samples)
     geo = prepare(kit)
     t1 = time.perf_counter()

@@ -17,31 +17,22 @@ from ..assembly.wrist import WristKit
 from ..design import spherical as sph
 from ..geometry import wrist as W
 from ..geometry.measure import intersection
-from .findings import Finding, Result
+from ..core.findings import Finding, Result
+from ..core.transforms import turn_about
 
 __all__ = ["check_wrist"]
-
-
-def _turn(T: np.ndarray, axis: np.ndarray, through: np.ndarray, angle: float) -> np.ndarray:
-    a = axis / np.linalg.norm(axis)
-    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    R = np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
-    out = np.eye(4)
-    out[:3, :3] = R @ T[:3, :3]
-    out[:3, 3] = R @ (T[:3, 3] - through) + through
-    return out
 
 
 def _play(g1, g2, T, axis, through, tol, limit=math.radians(20)) -> float:
     total = 0.0
     for sign in (1, -1):
         lo, hi = 0.0, limit
-        if intersection(g1, np.eye(4), g2, _turn(T, axis, through, sign * hi))[0] <= tol:
+        if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * hi))[0] <= tol:
             total += hi
             continue
         for _ in range(18):
             mid = (lo + hi) / 2
-            lo, hi = (mid, hi) if intersection(g1, np.eye(4), g2, _turn(T, axis, through, sign * mid))[0] <= tol else (lo, mid)
+            lo, hi = (mid, hi) if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * mid))[0] <= tol else (lo, mid)
         total += lo
     return total
 

@@ -43,7 +43,7 @@ def run(args) -> int:
     loaded, kit, man, dest = pipeline.build(args.config, args.out, progress, note)
     progress.done()
     if args.json:
-        findings = [{"severity": f.severity, "key": f.key_path, "message": f.message}
+        findings = [{"severity": f.severity, "key": f.key, "message": f.message}
                     for f in getattr(loaded.mechanism, "findings", ())]
         print_json({"ok": True, "kit": str(dest), "design": man["design"].get("name", loaded.params.name),
                     "parts": [{k: p[k] for k in ("name", "role", "count", "file", "volume_mm3", "mass_g")}
@@ -61,10 +61,10 @@ def run(args) -> int:
         print(f"wrote {dest}/ in {time.perf_counter() - t0:.2f} s")
         return 0
     for f in mech.findings:
-        if f.severity == "warning":
-            print(f"partgen: warning: {loaded.path}: {f.key_path}: {f.message}", file=sys.stderr)
+        if f.severity == "warn":
+            print(f"partgen: warning: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
         else:
-            print(f"partgen: note: {loaded.path}: {f.key_path}: {f.message}", file=sys.stderr)
+            print(f"partgen: note: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
     parts = man["parts"]
     n_gears = sum(p["count"] for p in parts if p["role"] == "gear")
     mass = sum(p["mass_g"] * p["count"] for p in parts)
@@ -74,7 +74,7 @@ def run(args) -> int:
     for p in parts:
         print(f"{p['name']:<12}{p['role']:<11}{p['count']:>5}{p['triangles']:>11}{p['volume_mm3'] / 1000:>12.2f}"
               f"{p['mass_g']:>9.1f}  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])}")
-    warn = sum(f.severity == "warning" for f in mech.findings)
+    warn = sum(f.severity == "warn" for f in mech.findings)
     print(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {time.perf_counter() - t0:.2f} s"
           + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
     return 0

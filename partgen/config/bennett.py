@@ -5,9 +5,8 @@ from __future__ import annotations
 import math
 
 from ..design.bennett_butterfly import BennettButterfly, BennettParams
-from ..design.mechanism import PrinterLimits
 from ..errors import ConfigError, DesignError
-from .loader import LoadedDesign
+from .loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve_bennett"]
 
@@ -68,5 +67,4 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
         tolerance=d.checks.balance_tolerance_mm, grid=tuple(d.checks.grid),
         infill_error=d.checks.infill_error_percent_points / 100.0, layers=parts.layers, fixed_layout=fixed,
         mass_scale=tuple(sorted(d.checks.mass_scale.items())),
-        printer=PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
-                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm), segments=parts.segments)
+        printer=printer_limits(p), segments=parts.segments)

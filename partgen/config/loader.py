@@ -11,12 +11,13 @@ from typing import Any, TypeVar
 
 from pydantic import BaseModel, ValidationError
 
+from ..core.printer import PrinterLimits
 from ..errors import ConfigError
 from .schema import BennettDesign, Design, Printer, WristDesign
 from .yamlio import read_yaml_file
 
 __all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path", "PRINTERS_DIR", "shipped_printers",
-           "printer_path", "KINDS"]
+           "printer_path", "KINDS", "printer_limits"]
 
 PRINTERS_DIR = Path(__file__).resolve().parent.parent / "printers"
 KINDS = {"gear_chain": Design, "wrist": WristDesign, "bennett_butterfly": BennettDesign}
@@ -155,3 +156,9 @@ def load_design(path: str | Path) -> LoadedDesign:
     ppath = printer_path(design.printer, path)
     printer = validate(Printer, read_yaml(ppath), ppath)
     return LoadedDesign(path, design, ppath, printer)
+
+
+def printer_limits(p: Printer) -> PrinterLimits:
+    """The validated printer profile as the kernels read it (mm)."""
+    return PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
+                         p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm, p.min_hole_to_size_diameter_mm)

@@ -8,10 +8,10 @@ import math
 from ..design import curve as curves
 from ..design.belt import BeltProfile
 from ..design.gearing import ToothSystem
-from ..design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, MechanismInputs, PrinterLimits
+from ..design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, MechanismInputs
 from ..design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ..errors import ConfigError
-from .loader import LoadedDesign
+from .loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve"]
 
@@ -107,9 +107,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
         pen_holder_height=d.pen.holder_height_mm,
         density=d.material.density_g_cm3 / 1000.0,
         material=d.material.name,
-        printer=PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
-                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm,
-                              p.min_hole_to_size_diameter_mm),
+        printer=printer_limits(p),
         drive_teeth=d.drive.teeth,
         drive_angle=math.radians(d.drive.angle_deg),
         checks=CheckSettings(d.checks.samples, d.checks.interference_tolerance_mm3, d.checks.min_clearance_mm,

@@ -6,10 +6,9 @@ import math
 
 from ..design.gearing import ToothSystem, make_gear
 from ..design.involute import max_tip_fillet_coeff
-from ..design.mechanism import PrinterLimits
 from ..errors import ConfigError
 from ..design.spherical import WristSpec
-from .loader import LoadedDesign
+from .loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve_wrist"]
 
@@ -51,5 +50,4 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
         psi_steps=w.sweep.psi_steps, shaft_diameter=w.shaft_diameter_mm,
         press_clearance=w.press_fit_clearance_diametral_mm, base_height=w.base_height_mm, tol=w.chord_tolerance_mm,
         density=d.material.density_g_cm3 / 1000.0, material=d.material.name,
-        printer=PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
-                              p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm), cross=cross)
+        printer=printer_limits(p), cross=cross)

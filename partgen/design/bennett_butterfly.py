@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.transforms import rot_x, rot_z
 from ..errors import DesignError
 from .balanced import Butterfly
 from .bennett import check_bennett, joint_angles
@@ -103,16 +104,6 @@ class Pose:
     axis: dict[str, np.ndarray]
 
 
-def _rz(t: np.ndarray) -> np.ndarray:
-    c, s, z, o = np.cos(t), np.sin(t), np.zeros_like(t), np.ones_like(t)
-    return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2)
-
-
-def _rx(t: float) -> np.ndarray:
-    c, s = math.cos(t), math.sin(t)
-    return np.array([[1.0, 0, 0], [0, c, -s], [0, s, c]])
-
-
 def shape_angle(q1: np.ndarray, q4: np.ndarray) -> np.ndarray:
     """Bennett 1's DH joint angle θ1 at S (from link 4's x, pointing B3→S, to link 1's x), rad."""
     return np.asarray(q1) - np.asarray(q4) - np.pi
@@ -122,10 +113,10 @@ def pose(bb: BennettButterfly, q1, q4) -> Pose:
     """Every joint point and link rotation at inputs q1, q4 (rad, scalars or (n,) arrays); S at 0."""
     q1, q4 = np.broadcast_arrays(np.atleast_1d(np.asarray(q1, float)), np.atleast_1d(np.asarray(q4, float)))
     th = joint_angles(shape_angle(q1, q4), bb.alpha, bb.beta)
-    R1 = _rz(q1)
-    R2 = R1 @ _rx(bb.alpha) @ _rz(th[:, 1])
-    R3 = R2 @ _rx(bb.beta) @ _rz(th[:, 2])
-    R4 = R3 @ _rx(bb.alpha) @ _rz(th[:, 3])
+    R1 = rot_z(q1)
+    R2 = R1 @ rot_x(bb.alpha) @ rot_z(th[:, 1])
+    R3 = R2 @ rot_x(bb.beta) @ rot_z(th[:, 2])
+    R4 = R3 @ rot_x(bb.alpha) @ rot_z(th[:, 3])
     ex = lambda R: R[..., :, 0]  # noqa: E731
     S = np.zeros((len(q1), 3))
     B2 = bb.a * ex(R1)
