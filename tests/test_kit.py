@@ -134,7 +134,7 @@ def test_stacking_figure_renders(built_kits, tmp_path):
     """The README's section picture is drawn from the kit's meshes without a display."""
     from PIL import Image
 
-    from partgen.export.plots import stack_section
+    from partgen.mechanisms.gear_chain.plots import stack_section
     _, built, _, _ = built_kits["butterfly"]
     out = tmp_path / "stack.png"
     stack_section(built, out)

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import shapely
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..geometry.measure import intersection, place2d
 from ..core.findings import Finding
 from .motion import PartGeometry

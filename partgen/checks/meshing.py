@@ -13,7 +13,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Point, Polygon, box
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..design import involute, rules
 from ..design.gearing import centre_distance
 from ..design.mechanism import gear_rules

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs
 from ..core.findings import Finding
 

@@ -8,7 +8,7 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Point, Polygon
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..design import rules
 from ..design.mechanism import gear_rules
 from ..core.findings import Finding

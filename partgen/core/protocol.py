@@ -77,6 +77,7 @@ class Mechanism(Protocol):
         """Every part of the kit; ``ConfigError`` (with the key) when a size leaves no part."""
         ...
 
+    def refuse(self, spec, kit: Kit) -> None: ...                    # DesignError: `build` writes no such kit
     def design_summary(self, spec, kit: Kit) -> dict: ...            # the manifest's "design"
     def kit_files(self, spec, kit: Kit) -> dict[str, bytes]: ...     # design.yaml (pinned), printer.yaml
     def plate_margin(self, spec) -> float: ...                       # mm between parts on a plate

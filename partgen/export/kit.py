@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..geometry.parts import Part
 from ..errors import MeshError
 from ..geometry.solid import mesh_arrays, print_arrays
@@ -73,7 +73,7 @@ def _gear_entry(part: Part) -> dict:
 def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
     """The manifest of a kit: {"design": ..., "parts": [...]}; placements at crank angle 0."""
     poses = kit.poses(0.0)
-    density = kit.params.density
+    density = kit.density
     parts = []
     for grp in groups:
         first = grp[0]
@@ -141,7 +141,7 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
             done[key] = printed(p)
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
-    verify_parts(groups, str(design.get("name", kit.params.name)))
+    verify_parts(groups, str(design.get("name", kit.name)))
     man = manifest(kit, groups, design)
     bought = [p for p in kit.parts if not p.printed]
     if bought:

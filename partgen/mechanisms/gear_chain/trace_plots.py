@@ -10,9 +10,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
 
-from ..design.mechanism import Mechanism  # noqa: E402
-from ..design.synthesis import Chain, trace  # noqa: E402
-from ..design.trace import built_chain, target_paths  # noqa: E402
+from ...design.mechanism import Mechanism  # noqa: E402
+from ...design.synthesis import Chain, trace  # noqa: E402
+from ...design.trace import built_chain, target_paths  # noqa: E402
 
 __all__ = ["trace_figure", "trace_animation"]
 

@@ -21,13 +21,13 @@ import math
 import numpy as np
 from shapely.geometry import Point
 
-from ..assembly import bennett as A
-from ..design import bennett_butterfly as bbf
-from ..geometry.bennett_link import tube
-from ..geometry.measure import intersection, oversize
-from ..geometry.printing import bore_open, footprint, shells
-from ..geometry.solid import mesh_arrays
-from ..core.findings import Finding, Result
+from . import kit as A
+from ...design import bennett_butterfly as bbf
+from ...geometry.bennett_link import tube
+from ...geometry.measure import intersection, oversize
+from ...geometry.printing import bore_open, footprint, shells
+from ...geometry.solid import mesh_arrays
+from ...core.findings import Finding, Result
 
 __all__ = ["check_bennett", "balance_figures", "stability"]
 

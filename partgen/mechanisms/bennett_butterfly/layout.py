@@ -20,11 +20,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..design import bennett_butterfly as bbf
-from ..design.bennett_butterfly import BennettParams
-from ..geometry.bennett_link import capsules
-from ..geometry.capsules import segment_distance
-from .bennett_parts import (BASE, Layout, base_features, default_layout, guess_fill, home_inputs, link_features,
+from ...design import bennett_butterfly as bbf
+from ...design.bennett_butterfly import BennettParams
+from ...geometry.bennett_link import capsules
+from ...geometry.capsules import segment_distance
+from .parts import (BASE, Layout, base_features, default_layout, guess_fill, home_inputs, link_features,
                             stack)
 
 __all__ = ["Sweep", "link_capsules", "part_capsules", "capsule_key", "shape_samples", "coarse_samples", "point_speed",

@@ -12,9 +12,9 @@ import numpy as np  # noqa: E402
 import trimesh  # noqa: E402
 from matplotlib.patches import Polygon as MplPolygon  # noqa: E402
 
-from ..assembly.kit import Kit, build_kit  # noqa: E402
-from ..design.synthesis import Chain  # noqa: E402
-from ..geometry.solid import mesh_arrays  # noqa: E402
+from .kit import Kit, build_kit  # noqa: E402
+from ...design.synthesis import Chain  # noqa: E402
+from ...geometry.solid import mesh_arrays  # noqa: E402
 
 __all__ = ["stack_section", "ROLE_COLOURS"]
 

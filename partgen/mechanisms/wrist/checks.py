@@ -13,12 +13,12 @@ import math
 
 import numpy as np
 
-from ..assembly.wrist import WristKit
-from ..design import spherical as sph
-from ..geometry import wrist as W
-from ..geometry.measure import intersection
-from ..core.findings import Finding, Result
-from ..core.transforms import turn_about
+from .kit import WristKit
+from ...design import spherical as sph
+from ...geometry import wrist as W
+from ...geometry.measure import intersection
+from ...core.findings import Finding, Result
+from ...core.transforms import turn_about
 
 __all__ = ["check_wrist"]
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import math
 
-from ..assembly.kit import Kit, belt_path_of
-from ..core.findings import Finding
+from .kit import Kit, belt_path_of
+from ...core.findings import Finding
 
 __all__ = ["check_belts", "MIN_TEETH_IN_MESH"]
 

@@ -4,16 +4,18 @@ g/cm³ → g/mm³, radial → diametral clearance)."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from pathlib import Path
 
-from ..design import curve as curves
-from ..design.belt import BeltProfile
-from ..design.gearing import ToothSystem
-from ..design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, MechanismInputs
-from ..design.synthesis import Chain, Link, chain_order, links_from_curve, prune
-from ..errors import ConfigError
-from .loader import LoadedDesign, printer_limits
+from ...design import curve as curves
+from ...design.belt import BeltProfile
+from ...design.gearing import ToothSystem
+from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, synthesize
+from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
+from ...errors import ConfigError, DesignError
+from ...config.loader import LoadedDesign, load_design, printer_limits
 
-__all__ = ["resolve"]
+__all__ = ["resolve", "resolve_spec", "ChainSpec", "load"]
 
 
 def _fourier(c) -> curves.FourierCurve:
@@ -114,3 +116,33 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
                              d.checks.min_contact_ratio, d.checks.min_tip_width_roads, d.checks.plate_margin_mm),
     )
     return inputs, params
+
+
+@dataclass(frozen=True)
+class ChainSpec:
+    """A gear chain ready to build: the synthesized mechanism and the kit's parameters."""
+
+    path: Path
+    mechanism: Mechanism
+    params: KitParams
+    printer_path: Path
+
+
+def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
+    """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key."""
+    inputs, params = resolve(loaded)
+    try:
+        mech = synthesize(inputs, params)
+    except DesignError as e:
+        key = e.key_path
+        if inputs.source == "curve" and key.startswith("links"):  # a curve design has no link table
+            key = "curve"
+        raise ConfigError(loaded.path, key, e.problem) from None
+    return ChainSpec(loaded.path, mech, params, loaded.printer_path)
+
+
+def load(path) -> ChainSpec:
+    """Read, validate and synthesize a gear chain design file (for scripts and tests)."""
+    from .schema import Design
+
+    return resolve_spec(load_design(path, {"gear_chain": Design}))

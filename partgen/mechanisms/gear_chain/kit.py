@@ -16,12 +16,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.transforms import pose_z
-from ..design.kinematics import clockings, gear_poses, joint_positions, link_angles
-from ..design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
-from ..errors import DesignError
-from ..geometry import parts as P
-from ..geometry.parts import DFit, Part
+from ...core.transforms import pose_z
+from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
+from ...design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
+from ...errors import DesignError
+from ...geometry import parts as P
+from ...geometry.parts import DFit, Part
 
 __all__ = ["Stack", "Contact", "Kit", "build_kit"]
 
@@ -82,6 +82,22 @@ class Kit:
     static: dict = field(default_factory=dict)  # name -> (4, 4) pose of parts fixed to the base
     clock: dict = field(default_factory=dict)
     contacts: tuple[Contact, ...] = ()
+
+    @property
+    def name(self) -> str:
+        return self.params.name
+
+    @property
+    def printer(self):
+        return self.params.printer
+
+    @property
+    def density(self) -> float:
+        return self.params.density
+
+    @property
+    def material(self) -> str:
+        return self.params.material
 
     def part(self, name: str) -> Part:
         return next(p for p in self.parts if p.name == name)
@@ -297,7 +313,7 @@ def _belts(mech: Mechanism):
 
 def belt_path_of(stage, profile):
     """The pitch path of a belt stage in its link frame: around D, the tensioner (if any) and G."""
-    from ..design.belt import belt_path
+    from ...design.belt import belt_path
     D = ((0.0, 0.0), stage.D.pitch_radius, 1)
     G = ((stage.length, 0.0), stage.G.pitch_radius, 1)
     if stage.tensioner is None:

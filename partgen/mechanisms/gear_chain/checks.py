@@ -7,14 +7,14 @@ import time
 
 import numpy as np
 
-from ..assembly.kit import Kit
-from ..geometry.solid import mesh_arrays
-from ..core.findings import Finding, Result
-from .fits import check_fits
-from .meshing import check_meshes
-from .motion import prepare, sample_angles, sweep
+from .kit import Kit
+from ...geometry.solid import mesh_arrays
+from ...core.findings import Finding, Result
+from ...checks.fits import check_fits
+from ...checks.meshing import check_meshes
+from ...checks.motion import prepare, sample_angles, sweep
 from .belts import check_belts
-from .printability import check_printability
+from ...checks.printability import check_printability
 
 __all__ = ["check_kit", "printed_extents"]
 

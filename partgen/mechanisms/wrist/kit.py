@@ -9,12 +9,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from shapely.geometry import box
 
-from ..design import spherical as sph
-from ..design.spherical import WristSpec
-from ..geometry import wrist as W
+from ...design import spherical as sph
+from ...design.spherical import WristSpec
+from ...geometry import wrist as W
 
-from ..geometry.parts import DFit, Part
-from ..geometry.solid import SLIVER, extrude, float32_sound, print_arrays
+from ...geometry.parts import DFit, Part
+from ...geometry.solid import SLIVER, extrude, float32_sound, print_arrays
 
 __all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max"]
 
@@ -39,6 +39,22 @@ class WristKit:
     theta_max: float
     params: WristParams
     figures: dict = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        return self.params.name
+
+    @property
+    def printer(self):
+        return self.params.printer
+
+    @property
+    def density(self) -> float:
+        return self.params.density
+
+    @property
+    def material(self) -> str:
+        return self.params.material
 
     def pose2(self, theta: float, psi: float) -> np.ndarray:
         """(4, 4) pose of gear 2 for a bend (θ, ψ); gear 1 stays at the origin."""
@@ -125,7 +141,7 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
     parts.append(Part("gear2", "wrist_gear", (turn(cap2) - sweep) - bore))
     if spec.cross is not None:  # the second tooth form: an ABENICS cross gear on the same sphere
         say("cross gear")
-        from ..geometry.cross_gear import GROW, cross_gear
+        from ...geometry.cross_gear import GROW, cross_gear
         r = spec.cross.tip_radius * 1.05
         half = extrude(box(-r, -r, r, r), r + 1.0, 0.0)  # cut flat at the equator: it prints on that face
         solid = ((cross_gear(spec.cross, grow=GROW * (1 + k / 4)) ^ half)

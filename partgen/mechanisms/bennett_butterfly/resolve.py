@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import math
 
-from ..design.bennett_butterfly import BennettButterfly, BennettParams
-from ..errors import ConfigError, DesignError
-from .loader import LoadedDesign, printer_limits
+from ...design.bennett_butterfly import BennettButterfly, BennettParams
+from ...errors import ConfigError, DesignError
+from ...config.loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve_bennett"]
 

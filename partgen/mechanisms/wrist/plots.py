@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ..design import spherical as sph  # noqa: E402
+from ...design import spherical as sph  # noqa: E402
 
 __all__ = ["wrist_figure"]
 

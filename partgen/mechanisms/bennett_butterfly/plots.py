@@ -13,9 +13,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from ..design import bennett_butterfly as bbf  # noqa: E402
-from ..design.balanced import LINKS  # noqa: E402
-from .render import view_matrix  # noqa: E402
+from ...design import bennett_butterfly as bbf  # noqa: E402
+from ...design.balanced import LINKS  # noqa: E402
+from ...export.render import view_matrix  # noqa: E402
 
 __all__ = ["poses_figure", "com_figure"]
 

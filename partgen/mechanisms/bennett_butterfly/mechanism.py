@@ -1,42 +1,25 @@
-"""`partgen build / check / report` for a balanced Bennett butterfly (``kind: bennett_butterfly``)."""
+"""The balanced Bennett butterfly (``kind: bennett_butterfly``) behind the Mechanism protocol: its
+bill, what to buy, its check and trace texts and its report sections."""
 
 from __future__ import annotations
 
 import html
 import math
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from .assembly import bennett as A
-from .config.bennett import resolve_bennett
-from .config.loader import LoadedDesign, read_yaml
-from .config.yamlio import dump_yaml
-from .errors import ConfigError, DesignError
+from ...config.loader import LoadedDesign, read_yaml
+from ...config.yamlio import dump_yaml
+from ...core.protocol import Motion, Trace
+from ...design.bennett_butterfly import BennettParams
+from ...errors import DesignError
+from . import kit as A
+from .parts import home_inputs
+from .resolve import resolve_bennett
+from .schema import BennettDesign
 
-__all__ = ["BennettLoaded", "build_bennett_kit", "check_bennett_design", "bill", "bought", "report_bennett",
-           "bill_text", "check_text"]
-
-
-@dataclass(frozen=True)
-class BennettLoaded:
-    """What the CLI needs to know of a loaded Bennett design (mirrors pipeline.Loaded)."""
-
-    path: Path
-    printer_path: Path
-    params: object
-    mechanism: None = None
-    kind: str = "bennett_butterfly"
-
-
-def _kit(raw: LoadedDesign, progress=None) -> tuple[BennettLoaded, A.BennettKit]:
-    p = resolve_bennett(raw)
-    try:
-        kit = A.build_bennett(p, progress)
-    except DesignError as e:
-        raise ConfigError(raw.path, e.key_path or "counterweights", e.problem) from None
-    return BennettLoaded(raw.path, raw.printer_path, p), kit
+__all__ = ["BennettButterfly", "MECHANISM", "bill", "bought", "layout_yaml"]
 
 
 def layout_yaml(kit: A.BennettKit) -> dict:
@@ -96,8 +79,8 @@ def _slug_fill(kit: A.BennettKit, length: float):
     return next(f for f in kit.fills.values() if f.length == length)
 
 
-def _design(kit: A.BennettKit, raw: LoadedDesign) -> dict:
-    from .checks.bennett import balance_figures
+def _design(kit: A.BennettKit) -> dict:
+    from .checks import balance_figures
 
     p = kit.params
     bal = {k: v for k, v in balance_figures(kit).items() if k not in ("trace", "grid")}
@@ -107,52 +90,13 @@ def _design(kit: A.BennettKit, raw: LoadedDesign) -> dict:
             info = dict(part.info)
             fills[info["part"]] = {k: v for k, v in info.items() if k != "part"}
             fills[info["part"]]["pocket_offset_mm"] = kit.figures["pocket_offsets_mm"][int(info["part"][4:])]
-    return {"name": p.name, "kind": "bennett_butterfly", "config": raw.path.name,
+    return {"name": p.name, "kind": "bennett_butterfly",
             "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha), "beta_deg": math.degrees(p.bb.beta),
             "scales": [1.0, p.bb.s2, p.bb.s3, p.bb.s4], "home_angle_deg": math.degrees(p.home),
             "workspace_deg": [math.degrees(x) for x in p.workspace], "layout": layout_yaml(kit),
             "counterweights": fills, "bill": bill(kit), "bought": bought(kit), "infill_percent": 100 * p.infill,
             "overhang_angle_deg": math.degrees(p.overhang_angle), "balance_tolerance_mm": p.tolerance,
             "balance_mm": bal, **{k: v for k, v in kit.figures.items() if k not in ("pocket_offsets_mm", "next_pockets")}}
-
-
-def build_bennett_kit(raw: LoadedDesign, dest=None, progress=None):
-    """Build the kit into ``dest`` (default out/<name>/): STLs (each in its print orientation),
-    manifest (the bill of masses with their centres, how each part prints, what to buy and where it
-    goes, the chosen layout), GLB, and the design with its layout pinned."""
-    from .export.kit import write_kit
-    from .geometry.measure import oversize
-
-    loaded, kit = _kit(raw, progress)
-    p = kit.params
-    for part, ext in oversize(kit.parts, p.printer.envelope, tol=0.0):
-        raise ConfigError(raw.path, "linkage.a_mm", f"{part.name} measures {ext.round(1)} mm and does not fit "
-                          "the printer in any orientation")
-    data = read_yaml(raw.path)
-    data["printer"] = "printer.yaml"
-    data.setdefault("parts", {})["layout"] = layout_yaml(kit)
-    files = {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
-    man = write_kit(kit, dest, _design(kit, raw), files, progress=progress)
-    return loaded, kit, man, dest.dest
-
-
-def check_bennett_design(raw: LoadedDesign, kit_dir: Path | None = None):
-    """Balance over the input grid, interference over the workspace, stacks, pins, printing, the
-    base, printer fit; for a kit folder also that its STLs are what its design.yaml builds."""
-    from .checks.bennett import check_bennett
-    from .core.findings import Finding
-    from .export.kit import printed
-
-    loaded, kit = _kit(raw)
-    result = check_bennett(kit)
-    if kit_dir is not None:
-        stale = [p.name for p in kit.parts if p.printed and (not (kit_dir / f"{p.name}.stl").is_file()
-                                                           or (kit_dir / f"{p.name}.stl").read_bytes() != printed(p).stl)]
-        if stale:
-            result.add(Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its "
-                               f"design.yaml builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
-                               tuple(stale)))
-    return loaded, kit, result, None
 
 
 def bill_text(man: dict, dest, seconds: float) -> str:
@@ -179,16 +123,16 @@ def bill_text(man: dict, dest, seconds: float) -> str:
     return "\n".join(lines)
 
 
-def check_text(loaded, result, seconds: float) -> str:
+def check_text(p, result, seconds: float) -> str:
     """What `check` prints for a Bennett kit."""
     f = result.figures
     b = f["balance_mm"]
     short = max(v for k, v in b.items() if k.startswith("one_slug_short"))
     st = f["base"]
-    lines = [f"{loaded.params.name}: balance over a {b['grid'][0]} × {b['grid'][1]} grid of (q1, angle between links 1 "
+    lines = [f"{p.name}: balance over a {b['grid'][0]} × {b['grid'][1]} grid of (q1, angle between links 1 "
              f"and 4); interference over {f['interference_samples']} shape angles, step {f['step_deg']:.2f}°",
              f"  centre of mass from S: as printed {b['fdm']:.4f} mm, printed solid {b['solid']:.4f} mm, "
-             f"infill off by {100 * loaded.params.infill_error:g} points {b['fdm_infill_error']:.3f} mm, "
+             f"infill off by {100 * p.infill_error:g} points {b['fdm_infill_error']:.3f} mm, "
              f"binder left out {b['no_binder']:.3f} mm, a pocket one slug short {short:.1f} mm"
              + (f", what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else ""),
              f"  least clearance {f['least_clearance_mm']:.2f} mm ({' – '.join(f['least_clearance_parts'])} at "
@@ -204,24 +148,18 @@ def check_text(loaded, result, seconds: float) -> str:
     return "\n".join(lines)
 
 
-def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
+def report_sections(kit: A.BennettKit, result) -> list[tuple[str, str]]:
     """One page: the design, the linkage at a few poses (planar and spatial), the assembled kit, the
     balance (centre-of-mass trace, the fill's sensitivity), the interference sweep, the base, how
     each part prints, the bill of parts and what to buy."""
-    from .checks.bennett import check_bennett
-    from .export import report as R
-    from .export.bennett_plots import com_figure, poses_figure
-    from .export.kit import atomic_dir
-    from .export.render import render
-    from .geometry.solid import mesh_arrays
+    from ...export import report as R
+    from .plots import com_figure, poses_figure
+    from ...export.kit import atomic_dir
+    from ...export.render import render
+    from ...geometry.solid import mesh_arrays
 
-    say("build")
-    loaded, kit = _kit(raw)
     p = kit.params
-    say("check")
-    result = check_bennett(kit)
     f, b = result.figures, result.figures["balance_mm"]
-    say("pictures")
     lo, hi = (math.degrees(x) for x in p.workspace)
     poses = poses_figure(p.bb, [lo, math.degrees(p.home), hi])
     ang = np.linspace(lo, hi, p.grid[1])
@@ -294,7 +232,123 @@ def report_bennett(raw: LoadedDesign, dest=None, say=lambda step: None) -> Path:
                  + R.table(["part", "layer", "solid g", "printed g", "fill g", "pins g", "support mm²", "on bed mm²",
                             "height mm"], rows)),
                 ("Bought parts", R.table(["item", "quantity", "for", "g"], buy))]
-    out = dest.dest
-    with atomic_dir(dest) as tmp:
-        (tmp / "index.html").write_text(R.page(f"partgen report: {p.name}", sections, raw.path.name), encoding="utf-8")
-    return out
+    return sections
+
+
+class BennettButterfly:
+    kind = "bennett_butterfly"
+    title = "balanced Bennett butterfly"
+    schema = BennettDesign
+    motion = Motion("angle between links 1 and 4", "rad", (0.0, math.pi))
+    csv_header = "angle_rad,com_from_S_mm,com_from_S_solid_mm\n"
+    trace_needs_kit = True
+    role_colours = {"bennett_link": "#4c78a8", "bennett_base": "#bbbbbb"}
+
+    def resolve(self, raw: LoadedDesign) -> BennettParams:
+        return resolve_bennett(raw)
+
+    def name(self, spec: BennettParams) -> str:
+        return spec.name
+
+    def build(self, spec: BennettParams, progress=None) -> A.BennettKit:
+        from ...geometry.measure import oversize
+
+        try:
+            kit = A.build_bennett(spec, progress)
+        except DesignError as e:
+            raise DesignError(e.problem, e.key_path or "counterweights") from None
+        return kit
+
+    def refuse(self, spec: BennettParams, kit: A.BennettKit) -> None:
+        from ...geometry.measure import oversize
+
+        for part, ext in oversize(kit.parts, spec.printer.envelope, tol=0.0):
+            raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                              "linkage.a_mm")
+
+    def findings(self, spec: BennettParams):
+        return []
+
+    def design_summary(self, spec: BennettParams, kit: A.BennettKit) -> dict:
+        return _design(kit)
+
+    def kit_files(self, spec: BennettParams, kit: A.BennettKit, raw: LoadedDesign) -> dict[str, bytes]:
+        """design.yaml with the chosen layout pinned (a kit folder rebuilds without a search), printer.yaml."""
+        data = read_yaml(raw.path)
+        data["printer"] = "printer.yaml"
+        data.setdefault("parts", {})["layout"] = layout_yaml(kit)
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+
+    def plate_margin(self, spec: BennettParams) -> float:
+        return 5.0
+
+    def check(self, spec: BennettParams, kit: A.BennettKit, samples: int | None = None, progress=None):
+        """Balance over the input grid, interference over the workspace, stacks, pins, printing, the base."""
+        from .checks import check_bennett
+
+        return check_bennett(kit)
+
+    def trace(self, spec: BennettParams, kit: A.BennettKit, samples: int | None, out: Path | None,
+              animate: bool = True) -> Trace:
+        """The linkage over its workspace: the poses (planar and spatial) and the path of the common
+        centre of mass (its worst distance from S over a turn of q1, per shape angle); poses.png, com.png."""
+        p = kit.params
+        n = samples or p.grid[1]
+        nq = p.grid[0]
+        ang = np.linspace(*p.workspace, n)
+        q1 = np.linspace(0, 2 * np.pi, nq, endpoint=False)
+        Q1, S = np.meshgrid(q1, ang, indexing="ij")
+        a1, a4 = home_inputs(S.ravel(), Q1.ravel())
+        fdm = A.com_deviation(kit, "fdm", a1, a4).reshape(nq, n).max(axis=0)
+        solid = A.com_deviation(kit, "solid", a1, a4).reshape(nq, n).max(axis=0)
+        stats = {"kind": self.kind, "samples": int(n), "q1_samples": int(nq),
+                 "workspace_deg": [math.degrees(x) for x in p.workspace],
+                 "com_from_S_max_mm": float(fdm.max()), "com_from_S_solid_max_mm": float(solid.max()),
+                 "worst_angle_deg": float(np.degrees(ang[int(np.argmax(fdm))])), "tolerance_mm": p.tolerance}
+        files = []
+        if out is not None:
+            from .plots import com_figure, poses_figure
+
+            lo, hi = (math.degrees(x) for x in p.workspace)
+            (out / "poses.png").write_bytes(poses_figure(p.bb, [lo, math.degrees(p.home), hi]))
+            (out / "com.png").write_bytes(com_figure(np.degrees(ang), {"fdm": fdm.tolist(), "solid": solid.tolist()},
+                                                     p.tolerance, {"fdm": "as printed (FDM model)",
+                                                                   "solid": "printed solid (100 % infill)"}))
+            files = ["poses.png", "com.png"]
+        return Trace(stats, files, columns=("angle_rad", "com_from_S_mm", "com_from_S_solid_mm"),
+                     data=np.column_stack([ang, fdm, solid]))
+
+    def csv(self, trace: Trace) -> str:
+        return self.csv_header + "".join(f"{a:.9f},{f:.6f},{s:.6f}\n" for a, f, s in trace.data)
+
+    def bill_text(self, spec, man: dict, dest, seconds: float) -> str:
+        return bill_text(man, dest, seconds)
+
+    def check_text(self, spec, result, folder, seconds: float) -> str:
+        return check_text(spec, result, seconds) + (f"; {result.figures.get('plates', '?')} build plate(s) in {folder}/"
+                                                    if folder else "")
+
+    def trace_text(self, spec, trace: Trace, folder) -> str:
+        s = trace.stats
+        lines = [f"{spec.name}: {s['samples']} shape angles from {s['workspace_deg'][0]:g}° to {s['workspace_deg'][1]:g}°, "
+                 f"each over {s['q1_samples']} turns of q1",
+                 f"  centre of mass from S: as printed ≤ {s['com_from_S_max_mm']:.4f} mm (worst at "
+                 f"{s['worst_angle_deg']:.1f}°, tolerance {s['tolerance_mm']:g} mm); printed solid ≤ "
+                 f"{s['com_from_S_solid_max_mm']:.4f} mm"]
+        if folder:
+            lines.append(f"plots: {folder}/{', '.join(trace.files)}")
+        return "\n".join(lines)
+
+    def report_sections(self, spec, kit, result, trace: Trace, files: dict, common: dict) -> list[tuple[str, str]]:
+        from ...export import report as R
+
+        sections = report_sections(kit, result)
+        if "com.png" in files:
+            sections.insert(2, ("Trace", R.img(files["com.png"], "centre of mass over the workspace")))
+        return sections
+
+    def subtitle(self, spec) -> str:
+        return "Bennett butterfly"
+
+
+MECHANISM = BennettButterfly()

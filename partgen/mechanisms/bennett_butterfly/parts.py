@@ -16,12 +16,12 @@ from functools import cached_property
 
 import numpy as np
 
-from ..design import bennett_butterfly as bbf
-from ..design.balanced import LINKS
-from ..design.bennett_butterfly import BennettParams
-from ..errors import DesignError
-from ..geometry.bennett_link import Bar, Boss, Column, Cup
-from ..geometry.mass import PrintSettings
+from ...design import bennett_butterfly as bbf
+from ...design.balanced import LINKS
+from ...design.bennett_butterfly import BennettParams
+from ...errors import DesignError
+from ...geometry.bennett_link import Bar, Boss, Column, Cup
+from ...geometry.mass import PrintSettings
 
 __all__ = ["BASE", "Layout", "Stack", "Fill", "default_layout", "stack", "guess_fill", "choose_fill", "link_features",
            "base_features", "cup_of", "cw_nominal", "pin_span", "home_inputs", "print_settings"]

@@ -17,21 +17,22 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import manifold3d as m3d
 import numpy as np
 
-from ..core.transforms import frame_z
-from ..design import bennett_butterfly as bbf
-from ..design.bennett_butterfly import BennettParams
-from ..geometry.bennett_link import Cup, base_solid, link_solid, pin_solid
-from ..geometry.mass import printed_mass
-from ..geometry.parts import Part
-from ..geometry.printing import best_orientation
-from ..geometry.solid import mesh_arrays
-from .bennett_layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
+from ...core.transforms import frame_z
+from ...design import bennett_butterfly as bbf
+from ...design.bennett_butterfly import BennettParams
+from ...geometry.bennett_link import Cup, base_solid, link_solid, pin_solid
+from ...geometry.mass import printed_mass
+from ...geometry.parts import Part
+from ...geometry.printing import best_orientation
+from ...geometry.solid import cylinder, mesh_arrays
+from .layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
                              part_reach, point_speed, search_layout, shape_samples, sweep_clearance)
-from .bennett_parts import (BASE, Fill, Layout, base_features, choose_fill, cup_of, cw_nominal, default_layout,
+from .parts import (BASE, Fill, Layout, base_features, choose_fill, cup_of, cw_nominal, default_layout,
                             home_inputs, link_features, print_settings, stack)
+
+Solid = object  # a manifold3d.Manifold, made by geometry/
 
 __all__ = ["BennettKit", "LinkMass", "PrintPose", "build_bennett", "com_deviation", "fill_points", "grid",
            # the layout and the parts, for the checks and the tests
@@ -68,8 +69,8 @@ class PrintPose:
 
 @dataclass(frozen=True)
 class _Built:
-    solid: m3d.Manifold  # body frame
-    printed: m3d.Manifold  # print frame
+    solid: Solid  # body frame
+    printed: Solid  # print frame
     pose: PrintPose
     mass: LinkMass
     cup: Cup | None
@@ -87,10 +88,26 @@ class BennettKit:
     cups: dict[int, Cup]
     fills: dict[int, Fill]
     delta: dict[int, np.ndarray]  # link -> (3,) mm: its pocket's offset from the nominal point
-    solids: dict[int, m3d.Manifold]  # part (0 = base) -> solid in its body frame
+    solids: dict[int, Solid]  # part (0 = base) -> solid in its body frame
     printing: dict[str, PrintPose]  # printed part name -> how it prints
     base_mass: LinkMass
     figures: dict = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        return self.params.name
+
+    @property
+    def printer(self):
+        return self.params.printer
+
+    @property
+    def density(self) -> float:
+        return self.params.density
+
+    @property
+    def material(self) -> str:
+        return self.params.material
 
     @property
     def pockets(self) -> dict[int, tuple[np.ndarray, Fill]]:
@@ -232,7 +249,7 @@ def _cup_solid(cup: Cup) -> tuple[float, np.ndarray]:
     return vc - vp, (vc * cc - vp * cp) / (vc - vp)
 
 
-def _print_pose(solid: m3d.Manifold, p: BennettParams) -> tuple[PrintPose, np.ndarray]:
+def _print_pose(solid: Solid, p: BennettParams) -> tuple[PrintPose, np.ndarray]:
     """The orientation with the least support among the part's flat faces (``best_orientation``),
     bed at z = 0; and print_from_body (3, 4)."""
     v, f = mesh_arrays(solid)
@@ -244,7 +261,7 @@ def _print_pose(solid: m3d.Manifold, p: BennettParams) -> tuple[PrintPose, np.nd
     return PrintPose(np.linalg.inv(pfb), o.overhang_mm2, o.contact_mm2, o.height_mm), pfb[:3]
 
 
-def _weigh(solid: m3d.Manifold, p: BennettParams) -> tuple[m3d.Manifold, PrintPose, LinkMass]:
+def _weigh(solid: Solid, p: BennettParams) -> tuple[Solid, PrintPose, LinkMass]:
     """The part laid on the bed, how, and its masses (centres back in the body frame)."""
     pose, pfb = _print_pose(solid, p)
     on_bed = solid.transform(pfb)
@@ -368,7 +385,7 @@ def _with_bought(kit: BennettKit) -> BennettKit:
         cup = kit.cups[i]
         name = f"link{i:02d}"
         centre, axis = _in_print(kit, name, cup.pocket_centre, np.asarray(cup.axis, float))
-        solid = m3d.Manifold.cylinder(f.depth, f.bore_radius, -1.0, p.segments, True)
+        solid = cylinder(f.depth, f.bore_radius, p.segments, True)
         bought.append(Part(f"fill_{name}", "counterweight fill", solid, printed=False, info=(
             ("part", name), ("slugs", {"count": f.count, "kind": p.slug_kind, "diameter_mm": f.diameter,
                                        "length_mm": f.length, "mass_g_each": round(f.slug_mass, 6)}),
