@@ -18,6 +18,7 @@ KINDS = (
     "gear_chain",
     "wrist",
     "bennett_butterfly",
+    "gear_pair",
 )
 
 REGISTRY: dict[str, Mechanism] = {kind: import_module(f"{__name__}.{kind}").MECHANISM for kind in KINDS}
