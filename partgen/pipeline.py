@@ -119,9 +119,27 @@ def build(path, dest=None, progress=None, notify=None) -> Built:
     return Built(loaded, kit, man, claim.dest)
 
 
+_GROUPS: dict = {}  # id(kit) -> its printed parts grouped (one kit at a time)
+
+
+def printed_groups(kit: Kit):
+    """The kit's printed parts laid on the plate and grouped by identical STL, made once per kit."""
+    if id(kit) not in _GROUPS:
+        done: dict = {}
+        items = []
+        for p in (p for p in kit.parts if p.printed):
+            key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
+            if key not in done:
+                done[key] = printed(p)
+            items.append(done[key].__class__(p, done[key].stl, done[key].mesh, done[key].local_from_print))
+        _GROUPS.clear()
+        _GROUPS[id(kit)] = (kit, group_parts(items))
+    return _GROUPS[id(kit)][1]
+
+
 def stale_files(kit: Kit, kit_dir: Path) -> list[str]:
     """The STLs of ``kit_dir`` missing or different (byte for byte) from what the design builds."""
-    groups = group_parts([printed(p) for p in kit.parts if p.printed])
+    groups = printed_groups(kit)
     return [f"{g[0].part.name}.stl" for g in groups if not (kit_dir / f"{g[0].part.name}.stl").is_file()
             or (kit_dir / f"{g[0].part.name}.stl").read_bytes() != g[0].stl]
 
@@ -131,7 +149,7 @@ def plan_plates(loaded: Loaded, kit: Kit, result: Result):
     None), the meshes by name and a function that draws the layout to a PNG path."""
     from .export.plates import footprint, layout, plate_picture
 
-    groups = group_parts([printed(p) for p in kit.parts if p.printed])
+    groups = printed_groups(kit)
     env, margin = kit.printer.envelope, loaded.mechanism.plate_margin(loaded.spec)
     meshes = {g[0].part.name: g[0].mesh for g in groups}
     try:
@@ -228,7 +246,7 @@ def report(target, dest=None, samples: int | None = None, progress=None) -> Path
     say("pictures")
     purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
     sections = mech.report_sections(spec, kit, result, tr, files, {})
-    bill = bill_sections(kit, mech.role_colours, purchased)
+    bill = bill_sections(kit, mech.role_colours, purchased, printed_groups(kit))
     sections[1:1] = bill
     if plates_png:
         sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"

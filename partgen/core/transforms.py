@@ -15,7 +15,12 @@ __all__ = ["rot2", "rot_z", "rot_x", "rot_axis", "pose", "pose_z", "turn_about",
 
 def _cs(angle: float) -> tuple[float, float]:
     c, s = math.cos(angle), math.sin(angle)
-    return tuple(float(round(t)) if abs(t - round(t)) < 1e-12 else t for t in (c, s))  # type: ignore[return-value]
+    rc, rs = round(c), round(s)
+    if abs(c - rc) < 1e-12:  # exact at quarter turns
+        c = float(rc)
+    if abs(s - rs) < 1e-12:
+        s = float(rs)
+    return c, s
 
 
 def rot2(angle: float) -> np.ndarray:
@@ -59,7 +64,8 @@ def pose(R=None, t=(0.0, 0.0, 0.0)) -> np.ndarray:
 
 def pose_z(x: float = 0.0, y: float = 0.0, z: float = 0.0, angle: float = 0.0) -> np.ndarray:
     """(4, 4): turned by ``angle`` about z, then moved to (x, y, z)."""
-    return pose(rot_z(angle), (x, y, z))
+    c, s = _cs(angle)
+    return np.array([[c, -s, 0.0, x], [s, c, 0.0, y], [0.0, 0.0, 1.0, z], [0.0, 0.0, 0.0, 1.0]])
 
 
 def turn_about(T: np.ndarray, axis, through, angle: float) -> np.ndarray:

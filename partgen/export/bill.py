@@ -13,9 +13,10 @@ from .render import render
 __all__ = ["bill_sections"]
 
 
-def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict]) -> list[tuple[str, str]]:
-    """[("Bill of parts", html)] and, when the kit has bought parts, [("Bought parts", html)]."""
-    groups = group_parts([printed(p) for p in kit.parts if p.printed])
+def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], groups=None) -> list[tuple[str, str]]:
+    """[("Bill of parts", html)] and, when the kit has bought parts, [("Bought parts", html)];
+    ``groups``: the kit's printed parts grouped (``export.kit.group_parts``), if made already."""
+    groups = groups or group_parts([printed(p) for p in kit.parts if p.printed])
     colour = lambda role: colours.get(role, "#999")  # noqa: E731
     poses = kit.poses(0.0)
     scene = []
