@@ -109,6 +109,14 @@ class BennettKit:
     def material(self) -> str:
         return self.params.material
 
+    def printed_mass(self, name: str) -> float | None:
+        """Grams of a printed part as printed (the FDM shell-and-infill model)."""
+        if name == "base":
+            return self.base_mass.fdm_mass
+        if name.startswith("link") and name[4:].isdigit():
+            return self.masses[int(name[4:])].fdm_mass
+        return None
+
     @property
     def pockets(self) -> dict[int, tuple[np.ndarray, Fill]]:
         return {i: (self.delta[i], self.fills[i]) for i in self.fills}

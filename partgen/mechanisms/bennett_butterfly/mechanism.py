@@ -286,7 +286,14 @@ class BennettButterfly:
         """Balance over the input grid, interference over the workspace, stacks, pins, printing, the base."""
         from .checks import check_bennett
 
-        return check_bennett(kit)
+        steps = 7  # the named steps check_bennett announces
+        done = [0]
+
+        def say(step: str) -> None:
+            done[0] += 1
+            if progress:
+                progress(min(done[0], steps), steps)
+        return check_bennett(kit, say)
 
     def trace(self, spec: BennettParams, kit: A.BennettKit, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:

@@ -32,7 +32,7 @@ class Wrist:
     motion = Motion("θ on gear 1", "rad", (0.0, math.pi / 2))
     csv_header = "theta_rad,ratio,phi_rad\n"
     trace_needs_kit = False
-    role_colours = {"gear": "#4c78a8"}
+    role_colours = {"wrist_gear": "#4c78a8"}
 
     def resolve(self, raw: LoadedDesign) -> WristSpec:
         spec = resolve_wrist(raw)
