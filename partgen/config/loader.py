@@ -131,7 +131,7 @@ def printer_path(value: str, design: Path, key: str = "printer", folders=()) -> 
     roots = [base, PRINTERS_DIR, *(Path(f).resolve() for f in folders)]
     if not any(path == r or r in path.parents for r in roots):
         raise ConfigError(design, key, f"{value!r} lies outside the design's folder: a design reads only a shipped "
-                          "printer (by name) or a profile in its own folder (or give --printer FILE)")
+                          "printer (by name) or a profile in its own folder: copy the profile beside the design")
     if not path.is_file():
         raise ConfigError(design, key, f"no printer profile at {value!r} (looked for {path})")
     return path
