@@ -77,7 +77,7 @@ def _describe(err: dict, data: Any, errors: list[dict]) -> tuple[str, str]:
         hint = f"; did you mean '{close[0]}'?" if close else " (not part of the schema; check its spelling)"
         return path, "unknown key" + hint
     got = err.get("input")
-    if not isinstance(got, (dict, list)):
+    if not isinstance(got, (dict, list)) and ", got " not in msg:
         msg += f", got {got!r}"
     return path, msg
 
