@@ -59,6 +59,18 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
             raise ConfigError(loaded.path, key, f"link {j + 1} ({l.name}) comes out {l.length:.1f} mm long: no plate "
                               f"that long fits the printer's {' × '.join(f'{x:g}' for x in p.build_envelope_mm)} mm "
                               "envelope")
+    if d.curve is None or longest >= p.min_link_length_mm:
+        # a link carries its D and G gears, each at least the printer's smallest gear: a shorter
+        # link cannot hold both, whatever the teeth (the chain's own rules refuse later, on teeth)
+        for j, l in enumerate(chain.links):
+            if l.length < p.min_gear_diameter_mm:
+                where = (f"at {d.curve.scale_mm_per_unit:g} mm per unit the curve makes link {j + 1} ({l.name})"
+                         if d.curve is not None else f"link {j + 1} ({l.name}) is")
+                fix = ("drop it (curve.drop_links) or change the curve's terms" if d.curve is not None
+                       else f"make it at least {p.min_gear_diameter_mm:g} mm")
+                raise ConfigError(loaded.path, "curve" if d.curve is not None else f"links[{j}].length_mm",
+                                  f"{where} {l.length:.3f} mm long, too short to carry two gears of the printer's "
+                                  f"smallest Ø{p.min_gear_diameter_mm:g} mm: {fix}")
     if d.curve is not None and longest < p.min_link_length_mm:
         need = d.curve.scale_mm_per_unit * p.min_link_length_mm / longest
         raise ConfigError(loaded.path, "curve.scale_mm_per_unit",
