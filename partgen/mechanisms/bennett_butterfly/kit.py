@@ -21,7 +21,7 @@ import numpy as np
 
 from ...core.transforms import frame_z
 from ...design import bennett_butterfly as bbf
-from ...design.bennett_butterfly import BennettParams
+from .params import BennettParams
 from ...geometry.bennett_link import Cup, base_solid, link_solid, pin_solid
 from ...geometry.mass import printed_mass
 from ...geometry.parts import Part

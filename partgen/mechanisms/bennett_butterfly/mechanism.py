@@ -12,7 +12,7 @@ import numpy as np
 from ...config.loader import LoadedDesign, read_yaml
 from ...config.yamlio import dump_yaml
 from ...core.protocol import Motion, Trace
-from ...design.bennett_butterfly import BennettParams
+from .params import BennettParams
 from ...errors import DesignError
 from . import kit as A
 from .parts import home_inputs

@@ -11,6 +11,7 @@ from ...design import curve as curves
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
 from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, synthesize
+from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_limits
@@ -130,6 +131,10 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     return inputs, params
 
 
+TOOTH_KEYS = {"cutter_tip_coeff": "gears.cutter_tip_radius_coeff", "addendum_coeff": "gears.addendum_coeff",
+              "profile_shift": "gears.profile_shift", "dedendum_coeff": "gears.dedendum_coeff"}
+
+
 @dataclass(frozen=True)
 class ChainSpec:
     """A gear chain ready to build: the synthesized mechanism and the kit's parameters."""
@@ -145,6 +150,8 @@ def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
     inputs, params = resolve(loaded)
     try:
         mech = synthesize(inputs, params)
+    except ToothSystemError as e:  # the design names the tooth system's field; this is its key
+        raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None
     except DesignError as e:
         key = e.key_path
         if inputs.source == "curve" and key.startswith("links"):  # a curve design has no link table

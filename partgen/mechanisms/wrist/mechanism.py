@@ -13,7 +13,8 @@ from ...config.yamlio import dump_yaml
 from ...core.findings import Result
 from ...core.protocol import Motion, Trace
 from ...design import spherical as sph
-from ...design.spherical import RangeError, WristSpec
+from ...design.spherical import RangeError
+from .spec import WristSpec
 from ...errors import DesignError
 from ...geometry.measure import oversize
 from .kit import WristKit, build_wrist, workspace_theta_max

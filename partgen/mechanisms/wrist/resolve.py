@@ -7,7 +7,7 @@ import math
 from ...design.gearing import ToothSystem, make_gear
 from ...design.involute import max_tip_fillet_coeff
 from ...errors import ConfigError
-from ...design.spherical import WristSpec
+from .spec import WristSpec
 from ...config.loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve_wrist"]
