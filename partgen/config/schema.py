@@ -247,12 +247,16 @@ class Design(Strict):
 
     @model_validator(mode="after")
     def _one_source(self):
-        if (self.curve is None) == (self.links is None):
-            raise ValueError("give exactly one of 'curve' (derive the links) or 'links' (a design table)")
+        if self.curve is None and self.links is None:
+            raise ValueError("[curve] required key is missing: give 'curve' (derive the links from a curve) or "
+                             "'links' (a design table)")
+        if self.curve is not None and self.links is not None:
+            raise ValueError("[links] give 'curve' (derive the links) or 'links' (a design table), not both")
         if self.belts is not None and self.teeth != "auto":
-            raise ValueError("a belt design chooses its pulleys: give 'teeth: auto'")
+            raise ValueError("[teeth] a belt design chooses its pulleys: give 'teeth: auto'")
         if self.target is not None and self.curve is not None:
-            raise ValueError("'target' is for design tables ('links'); a 'curve' design is traced against its curve")
+            raise ValueError("[target] 'target' is for design tables ('links'); a 'curve' design is traced against "
+                             "its curve")
         return self
 
 
