@@ -53,3 +53,10 @@ def test_both_curve_and_links_is_an_error_on_links(tmp_path, capsys):
     liu = yaml.safe_load(open("configs/butterfly_liu2017.yaml"))
     err = _err(tmp_path, capsys, _write(tmp_path, "configs/butterfly.yaml", lambda d: d.update(links=liu["links"])))
     assert ": links: give 'curve'" in err and "not both" in err, err
+
+
+def test_a_vanishing_curve_term_is_refused_on_its_key(tmp_path, capsys):
+    def edit(d):
+        d["curve"]["polar"]["sin"][9] = 1e-300  # made no link, so drop_links' L10 was "not there"
+    err = _err(tmp_path, capsys, _write(tmp_path, "configs/butterfly.yaml", edit))
+    assert ": curve.polar.sin.9: a term under 1e-9" in err and err.count("got") == 1, err

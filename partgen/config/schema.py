@@ -26,6 +26,15 @@ def _zero_or_at_least(v: float) -> float:
 
 
 Gap = Annotated[float, Field(ge=0, le=MAX), AfterValidator(_zero_or_at_least)]  # mm
+
+
+def _zero_or_not_tiny(v: float) -> float:
+    if 0 < abs(v) < 1e-9:
+        raise ValueError("a term under 1e-9 curve units is nothing at any print scale: write 0 to leave it out")
+    return v
+
+
+Coeff = Annotated[float, Field(ge=-MAX, le=MAX), AfterValidator(_zero_or_not_tiny)]  # a curve term, curve units
 Ratio = Annotated[float, Field(ge=0.01, le=100)]
 Density = Annotated[float, Field(gt=0, le=30)]  # g/cm³ (osmium is 22.6)
 Teeth = Annotated[int, Field(ge=4, le=1000)]
@@ -52,18 +61,18 @@ class Printer(Strict):
 class Polar(Strict):
     """ρ(θ) = constant + Σ sin[k]·sin kθ + cos[k]·cos kθ (curve units)."""
 
-    constant: Finite = 0.0
-    sin: dict[Annotated[int, Field(ge=1, le=64)], Finite] = {}
-    cos: dict[Annotated[int, Field(ge=1, le=64)], Finite] = {}
+    constant: Coeff = 0.0
+    sin: dict[Annotated[int, Field(ge=1, le=64)], Coeff] = {}
+    cos: dict[Annotated[int, Field(ge=1, le=64)], Coeff] = {}
 
 
 class Cartesian(Strict):
     """x = Σ a_k cos kθ + b_k sin kθ, y = Σ c_k cos kθ + d_k sin kθ; lists indexed by k from 0."""
 
-    a: Annotated[list[Finite], Field(min_length=1, max_length=65)]
-    b: Annotated[list[Finite], Field(min_length=1, max_length=65)]
-    c: Annotated[list[Finite], Field(min_length=1, max_length=65)]
-    d: Annotated[list[Finite], Field(min_length=1, max_length=65)]
+    a: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    b: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    c: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    d: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
 
     @model_validator(mode="after")
     def _same_length(self):
