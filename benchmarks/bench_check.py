@@ -53,10 +53,10 @@ try:
     import numpy as np
     import yaml
 
-    from partgen import pipeline
-    from partgen.assembly.kit import Kit, build_kit
+    from partgen.mechanisms.gear_chain.resolve import load as chain_load
+    from partgen.mechanisms.gear_chain.kit import Kit, build_kit
     from partgen.checks.motion import prepare, sample_angles, sweep
-    from partgen.checks.run import check_kit
+    from partgen.mechanisms.gear_chain.checks import check_kit
     from partgen.design.curve import from_polar
     from partgen.design.synthesis import links_from_curve
 except ImportError as e:  # pragma: no cover - wrong interpreter
@@ -185,7 +185,7 @@ def bench_chain(folder: Path, base: dict, K: int, samples: int, naive_angle: boo
     path = folder / f"chain_K{K}.yaml"
     path.write_text(yaml.safe_dump(d, sort_keys=False))
     try:
-        t_load, L = timed(pipeline.load, path)
+        t_load, L = timed(chain_load, path)
         t_build, kit = timed(build_kit, L.mechanism, L.params)
     except Exception as e:  # ConfigError / DesignError: report why this size does not work
         row["error"] = f"{type(e).__name__}: {e}".replace(str(path), path.name)
@@ -276,7 +276,7 @@ def main(argv: list[str] | None = None) -> int:
 
     # ---- 1. the default kit, in-process and fresh process
     say("load + build the default kit")
-    t_load, L = timed(pipeline.load, DEFAULT_KIT)
+    t_load, L = timed(chain_load, DEFAULT_KIT)
     t_build, kit = timed(build_kit, L.mechanism, L.params)
     P = len(kit.parts)
     all_pairs = P * (P - 1) // 2
@@ -306,7 +306,7 @@ def main(argv: list[str] | None = None) -> int:
     cli_json = cli[0][1]
     cli_sweep = statistics.median(j["figures"]["seconds"]["motion"] for _, j in cli)
     t_imp = subprocess.run([sys.executable, "-c", "import time; t = time.perf_counter(); import partgen.pipeline, "
-                            "partgen.checks.run; print(time.perf_counter() - t)"], cwd=ROOT,
+                            "partgen.mechanisms.gear_chain.checks; print(time.perf_counter() - t)"], cwd=ROOT,
                            capture_output=True, text=True)
     import_s = float(t_imp.stdout.strip() or "nan")
 

@@ -24,8 +24,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from partgen import pipeline  # noqa: E402
-from partgen.assembly.kit import build_kit  # noqa: E402
+from partgen import pipeline
+from partgen.mechanisms.gear_chain.resolve import load as chain_load  # noqa: E402
+from partgen.mechanisms.gear_chain.kit import build_kit  # noqa: E402
 from partgen.export import plates as P  # noqa: E402
 from partgen.export.kit import group_parts, printed  # noqa: E402
 from partgen.export.threemf import Object3MF, write_3mf  # noqa: E402
@@ -57,14 +58,14 @@ def main() -> None:
     args = ap.parse_args()
     print(f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}, {os.cpu_count()} cores; "
           f"best of {args.runs}", file=sys.stderr)
-    loaded = pipeline.load(args.config)
+    loaded = chain_load(args.config)
     kit = build_kit(loaded.mechanism, loaded.params)
     groups = group_parts([printed(p) for p in kit.parts if p.printed])
     items = [(g[0].part.name, g[0].mesh, len(g)) for g in groups]
     meshes = {n: m for n, m, _ in items}
-    margin = loaded.params.checks.plate_margin
+    margin = loaded.spec.params.checks.plate_margin
     area = sum(P.footprint(m, margin).area * c for _, m, c in items)
-    print(f"{loaded.params.name}: {len(items)} distinct parts, {sum(c for *_, c in items)} copies, "
+    print(f"{loaded.spec.params.name}: {len(items)} distinct parts, {sum(c for *_, c in items)} copies, "
           f"margin {margin:g} mm\n")
     print(f"{'bed':28s} {'area bound':>10s} | {'quarter turns':>22s} | {'free turns':>22s} | time ratio")
     layouts = {}
@@ -91,10 +92,10 @@ def main() -> None:
             def before():
                 objs = [Object3MF(n, np.asarray(m.vertices), np.asarray(m.faces), (np.eye(4),))
                         for n, m in P.plate_meshes(P.Layout((plate,), lay.size), meshes)[0]]
-                return write_3mf(objs, {"Title": loaded.params.name})
+                return write_3mf(objs, {"Title": loaded.spec.params.name})
             old, t_old = best_of(args.runs, before)
-            new, t_new = best_of(args.runs, lambda: P.plate_3mf(plate, meshes, loaded.params.name,
-                                                                 loaded.params.material))
+            new, t_new = best_of(args.runs, lambda: P.plate_3mf(plate, meshes, loaded.spec.params.name,
+                                                                 loaded.spec.params.material))
             print(f"{label:28s} {i:5d} {len(plate):6d} {len({p.name for p in plate}):5d} | "
                   f"{len(old) / 1e6:6.2f} ({xml_size(old) / 1e6:6.2f}) | {len(new) / 1e6:6.2f} "
                   f"({xml_size(new) / 1e6:6.2f}) | {len(new) / len(old):10.2f} | {t_old:.2f}/{t_new:.2f}")

@@ -82,9 +82,9 @@ def child_main(job: dict) -> None:
     import numpy as np
 
     import partgen.geometry.wrist as W
-    from partgen.assembly.wrist import build_wrist
-    from partgen.config.loader import load_design
-    from partgen.config.wrist import resolve_wrist
+    from partgen.mechanisms.wrist.kit import build_wrist
+    from partgen.mechanisms import load_design
+    from partgen.mechanisms.wrist.resolve import resolve_wrist
     t_imp = time.perf_counter() - t_imp
     res: dict = {"job": job, "t_import": t_imp}
 

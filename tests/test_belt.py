@@ -10,8 +10,9 @@ import shapely
 import pytest
 
 from partgen import pipeline
-from partgen.assembly.kit import belt_path_of, build_kit
-from partgen.checks.run import check_kit
+from partgen.mechanisms.gear_chain.resolve import load as chain_load
+from partgen.mechanisms.gear_chain.kit import belt_path_of, build_kit
+from partgen.mechanisms.gear_chain.checks import check_kit
 from partgen.design.belt import BeltProfile, belt_path, design_belt_stage, open_length
 from partgen.design.synthesis import trace
 from partgen.design.trace import built_chain
@@ -24,7 +25,7 @@ GT2 = BeltProfile()
 
 @pytest.fixture(scope="module")
 def belt():
-    L = pipeline.load(ROOT / "configs" / "butterfly_belt.yaml")
+    L = chain_load(ROOT / "configs" / "butterfly_belt.yaml")
     return L, build_kit(L.mechanism, L.params)
 
 
@@ -113,7 +114,7 @@ def test_a_belt_through_a_part_is_caught(belt):
 
 def test_belt_curve_stays_within_half_a_millimetre_of_the_gear_version(belt):
     L, _ = belt
-    gear = pipeline.load(ROOT / "configs" / "butterfly.yaml").mechanism
+    gear = chain_load(ROOT / "configs" / "butterfly.yaml").mechanism
     theta = np.linspace(0, 2 * np.pi, 7200, endpoint=False)
     d = np.abs(trace(built_chain(L.mechanism), theta) - trace(built_chain(gear), theta)).max()
     assert d < 0.5

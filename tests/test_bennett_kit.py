@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 import trimesh
 
-from partgen.assembly import bennett as A
-from partgen.checks.bennett import check_bennett
-from partgen.config.bennett import resolve_bennett
-from partgen.config.loader import load_design
+from partgen.mechanisms.bennett_butterfly import kit as A
+from partgen.mechanisms.bennett_butterfly.checks import check_bennett
+from partgen.mechanisms.bennett_butterfly.resolve import resolve_bennett
+from partgen.mechanisms import load_design
 from partgen.design import bennett_butterfly as bbf
 from partgen.geometry.bennett_link import place_on_axis
 from partgen.geometry.capsules import segment_distance

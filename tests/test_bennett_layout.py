@@ -7,10 +7,10 @@ import itertools
 import numpy as np
 import pytest
 
-from partgen.assembly import bennett as A
-from partgen.assembly import bennett_layout as L
-from partgen.config.bennett import resolve_bennett
-from partgen.config.loader import load_design
+from partgen.mechanisms.bennett_butterfly import kit as A
+from partgen.mechanisms.bennett_butterfly import layout as L
+from partgen.mechanisms.bennett_butterfly.resolve import resolve_bennett
+from partgen.mechanisms import load_design
 from partgen.geometry.capsules import capsule_clearance
 
 P = resolve_bennett(load_design("tests/designs/bennett_fixed.yaml"))

@@ -4,8 +4,8 @@
 import pytest
 import yaml
 
-from partgen.config.bennett import MIN_TWIST_DEG, resolve_bennett
-from partgen.config.loader import load_design
+from partgen.mechanisms.bennett_butterfly.resolve import MIN_TWIST_DEG, resolve_bennett
+from partgen.mechanisms import load_design
 from partgen.errors import ConfigError
 
 

@@ -10,10 +10,11 @@ import numpy as np
 import pytest
 
 from partgen import pipeline
-from partgen.assembly.kit import Kit, build_kit
+from partgen.mechanisms.gear_chain.resolve import load as chain_load
+from partgen.mechanisms.gear_chain.kit import Kit, build_kit
 from partgen.checks.meshing import check_meshes
 from partgen.checks.motion import prepare, sample_angles, sweep
-from partgen.checks.run import check_kit
+from partgen.mechanisms.gear_chain.checks import check_kit
 from partgen.cli.main import main
 
 ROOT = Path(__file__).parent.parent
@@ -27,7 +28,7 @@ def fails(result, check=None):
 
 @pytest.fixture(scope="module")
 def default_kit():
-    L = pipeline.load(ROOT / "configs" / "butterfly.yaml")
+    L = chain_load(ROOT / "configs" / "butterfly.yaml")
     return build_kit(L.mechanism, L.params)
 
 
@@ -94,7 +95,7 @@ def faulted(kit: Kit, **changes) -> Kit:
 def test_gear_clocked_half_a_tooth_off_fails_its_mesh(default_kit):
     """A manufacturing fault: G5 pressed onto plate 5 half a tooth off its clocking."""
     z = default_kit.part("G5").gear.teeth
-    L = pipeline.load(ROOT / "configs" / "butterfly.yaml")
+    L = chain_load(ROOT / "configs" / "butterfly.yaml")
     kit = build_kit(L.mechanism, L.params, clock_error={"G5": math.pi / z})
     assert kit.clock["G5"] == pytest.approx(default_kit.clock["G5"] + math.pi / z)
     result = check_kit(kit, SAMPLES)

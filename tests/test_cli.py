@@ -133,5 +133,5 @@ def test_liu2017_manifest(liu_kit):
     assert [s["teeth"] for s in design["stages"]] == [dict(t) for t in cfg["teeth"]]
     assert [s["j"] for s in design["stages"]] == list(range(1, len(cfg["teeth"]) + 1))
     eq12 = [f for f in design["findings"] if f["code"] == "eq12"]
-    assert any("link 10" in f["message"] and f["key"] == "teeth[9]" and f["severity"] == "warning" for f in eq12), \
+    assert any("link 10" in f["message"] and f["key"] == "teeth[9]" and f["severity"] == "warn" for f in eq12), \
         design["findings"]

@@ -12,7 +12,7 @@ from partgen.design.drivetrain import Limits, choose_stage, eq11_ratios, idler_c
 from partgen.design.gearing import ToothSystem, make_gear
 from partgen.design.kinematics import gear_poses, mesh_phase_error
 from partgen.errors import DesignError
-from partgen.pipeline import load
+from partgen.mechanisms.gear_chain.resolve import load
 
 ROOT = Path(__file__).parent.parent
 TABLE3 = yaml.safe_load((Path(__file__).parent / "data" / "liu2017_table3_manufacturing.yaml").read_text())
@@ -53,7 +53,7 @@ def test_auto_teeth_satisfy_eq11_eq12_eq13_with_margin(default):
             assert g.module * g.teeth >= params.printer.min_gear - 1e-9
             assert 2 * g.root_radius >= params.min_root_diameter - 1e-9
             assert not g.undercut
-    assert not [f for f in mech.findings if f.severity == "warning"]
+    assert not [f for f in mech.findings if f.severity == "warn"]
 
 
 def test_idler_sits_at_both_centre_distances(default, paper):
@@ -80,17 +80,17 @@ def test_minimax_objective_reproduces_paper_link1():
 
 def test_paper_link10_violates_eq12(paper):
     """21 + 15 teeth at m = 1.5 with a 1.5 mm addendum on a 30 mm link: the tip circles touch."""
-    codes = {(f.code, f.key_path) for f in paper.mechanism.findings}
+    codes = {(f.rule, f.key) for f in paper.mechanism.findings}
     assert ("eq12", "teeth[9]") in codes
     s = paper.mechanism.stages[9]
     assert s.length - s.D.tip_radius - s.G.tip_radius == pytest.approx(0.0, abs=1e-12)
 
 
 def test_paper_15_tooth_gears_are_reported_undercut(paper):
-    undercut = {f.message.split(":")[1].strip().split(" ")[0] + str(f.key_path) for f in paper.mechanism.findings
-                if f.code == "undercut"}
+    undercut = {f.message.split(":")[1].strip().split(" ")[0] + str(f.key) for f in paper.mechanism.findings
+                if f.rule == "undercut"}
     assert undercut  # 15- and 16-tooth gears at x = 0
-    assert all(f.severity == "info" for f in paper.mechanism.findings if f.code == "undercut")
+    assert all(f.severity == "info" for f in paper.mechanism.findings if f.rule == "undercut")
     fifteen = [g for _, g in paper.mechanism.gears if g.teeth == 15]
     assert fifteen and all(g.undercut for g in fifteen)
 
@@ -98,9 +98,9 @@ def test_paper_15_tooth_gears_are_reported_undercut(paper):
 def test_verify_flags_ratio_off_eq11():
     limits = Limits(15.0, 0.0, 0.0, 0.0)
     st = make_stage(1, 60.0, Fraction(2), (36, 18, 19), PAPER)
-    assert "eq11" in {f.code for f in verify_stage(st, limits, "teeth[0]")}
+    assert "eq11" in {f.rule for f in verify_stage(st, limits, "teeth[0]")}
     good = make_stage(1, 60.0, Fraction(2), (36, 18, 18), PAPER)
-    assert "eq11" not in {f.code for f in verify_stage(good, limits, "teeth[0]")}
+    assert "eq11" not in {f.rule for f in verify_stage(good, limits, "teeth[0]")}
 
 
 def test_no_teeth_for_the_ratio_is_a_design_error():

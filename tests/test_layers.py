@@ -1,5 +1,7 @@
-"""The architecture holds: data flows config → design → geometry → assembly → export, a lower
-layer never imports a higher one, and the design math imports no mesh or CAD library."""
+"""The architecture holds: core → design → config/geometry → checks/export → mechanisms → pipeline →
+cli. A lower layer never imports a higher one (root modules included, ``from .. import x`` read as
+the module it names), mechanism folders never import each other, the shared kernels know no
+mechanism, and the design math imports no mesh library, pydantic or YAML."""
 
 import ast
 from pathlib import Path
@@ -7,65 +9,131 @@ from pathlib import Path
 import pytest
 
 PKG = Path(__file__).parent.parent / "partgen"
-LAYERS = ["design", "config", "geometry", "assembly", "checks", "export", "cli"]
-# what each layer may import from partgen (besides itself and errors) and which libraries it must not
+
+# what each unit may import from partgen besides itself; a unit is a sub-package or a root module
 ALLOWED = {
-    "design": set(),
-    "config": {"design"},
-    "geometry": {"design"},
-    "assembly": {"design", "geometry"},
-    "checks": {"design", "geometry", "assembly"},
-    "export": {"design", "geometry", "assembly"},
+    "errors": set(),
+    "core": set(),
+    "design": {"core", "errors"},
+    "config": {"core", "design", "errors"},
+    "geometry": {"core", "design", "errors"},
+    "checks": {"core", "design", "geometry", "errors"},
+    "export": {"core", "design", "geometry", "errors", "__init__"},  # __init__: the version string
+    "testing": {"core", "design", "geometry", "export", "errors"},
+    "mechanisms": {"core", "design", "config", "geometry", "checks", "export", "errors"},
+    "pipeline": {"core", "config", "export", "mechanisms", "errors"},
+    "cli": {"pipeline", "export", "errors", "__init__"},
+    "__init__": {"pipeline", "errors"},
+    "__main__": {"cli"},
 }
 FORBIDDEN_LIBS = {
+    "core": {"manifold3d", "trimesh", "shapely", "yaml", "pydantic", "matplotlib", "scipy"},
     "design": {"manifold3d", "trimesh", "shapely", "yaml", "pydantic", "matplotlib", "scipy"},
     "config": {"manifold3d", "trimesh", "shapely", "matplotlib"},
     "geometry": {"trimesh", "yaml", "pydantic", "matplotlib"},
-    "assembly": {"trimesh", "yaml", "pydantic", "matplotlib"},
     "checks": {"manifold3d", "trimesh", "yaml", "pydantic", "matplotlib"},
+    "pipeline": {"manifold3d"},
+    "cli": {"manifold3d"},
 }
+MANIFOLD_ONLY_IN = {"geometry"}  # the one manifold3d importer (mechanisms may hold its solids, not make them)
 
 
-def imports(path: Path) -> set[tuple[int, str]]:
-    """(relative level, dotted name) of every import in a module."""
-    out = set()
+def modules():
+    """(unit, path) of every module of partgen: sub-packages and root modules."""
+    for f in sorted(PKG.rglob("*.py")):
+        rel = f.relative_to(PKG)
+        yield (rel.parts[0] if len(rel.parts) > 1 else rel.stem), f
+
+
+def imports(path: Path) -> list[tuple[int, str, tuple[str, ...]]]:
+    """(relative level, module, imported names) of every import in a module."""
+    out = []
     for node in ast.walk(ast.parse(path.read_text())):
         if isinstance(node, ast.Import):
-            out |= {(0, a.name) for a in node.names}
+            out += [(0, a.name, ()) for a in node.names]
         elif isinstance(node, ast.ImportFrom):
-            out.add((node.level, node.module or ""))
+            out.append((node.level, node.module or "", tuple(a.name for a in node.names)))
     return out
 
 
-def partgen_layer(level: int, name: str, here: str) -> str | None:
+def targets(path: Path, level: int, name: str, names: tuple[str, ...]) -> list[tuple[str, ...]]:
+    """The partgen modules an import reaches, as paths inside the package (``("mechanisms", "wrist",
+    "kit")``); ``from .. import x`` reaches x."""
     if level == 0:
-        return name.split(".")[1] if name.startswith("partgen.") else None
-    if level == 1:
-        return here
-    return name.split(".")[0] if name else None
+        if not name.startswith("partgen"):
+            return []
+        base = name.split(".")[1:]
+        return [tuple(base + [n]) if (PKG.joinpath(*base, n).is_dir() or PKG.joinpath(*base, f"{n}.py").is_file())
+                else tuple(base) for n in names] or [tuple(base)]
+    here = list(path.relative_to(PKG).parts[:-1])
+    base = here[:len(here) - (level - 1)] if level > 1 else here
+    if level - 1 > len(here):
+        return [("..",)]
+    base = base + (name.split(".") if name else [])
+    out = []
+    for n in names or ("",):
+        if n and (PKG.joinpath(*base, n).is_dir() or PKG.joinpath(*base, f"{n}.py").is_file()):
+            out.append(tuple(base + [n]))
+        else:
+            out.append(tuple(base))
+    return out
 
 
-@pytest.mark.parametrize("layer", list(ALLOWED))
-def test_lower_layers_never_import_higher_ones(layer):
-    for f in sorted((PKG / layer).glob("*.py")):
-        for level, name in imports(f):
-            target = partgen_layer(level, name, layer)
-            if target in (None, layer, "errors"):
+def unit_of(target: tuple[str, ...]) -> str:
+    if not target:
+        return "__init__"
+    return target[0][:-3] if target[0].endswith(".py") else target[0]
+
+
+def violations() -> list[str]:
+    bad = []
+    for unit, f in modules():
+        where = f.relative_to(PKG)
+        for level, name, names in imports(f):
+            if level == 0 and not name.startswith("partgen"):
+                lib = name.split(".")[0]
+                if lib in FORBIDDEN_LIBS.get(unit, ()):
+                    bad.append(f"{where} imports {name}")
+                if lib == "manifold3d" and unit not in MANIFOLD_ONLY_IN:
+                    bad.append(f"{where} imports manifold3d (only geometry/ may)")
                 continue
-            assert target in ALLOWED[layer], f"{f.relative_to(PKG)} imports partgen.{target}"
+            for t in targets(f, level, name, names):
+                u = unit_of(t)
+                if t == ("..",):
+                    bad.append(f"{where}: relative import above the package")
+                    continue
+                if u != unit and u not in ALLOWED[unit]:
+                    bad.append(f"{where} imports partgen.{'.'.join(t)}")
+                if unit == "mechanisms" and u == "mechanisms" and len(where.parts) > 2 and len(t) > 1 \
+                        and t[1] != where.parts[1]:
+                    bad.append(f"{where} imports another mechanism: partgen.{'.'.join(t)}")
+    return bad
 
 
-@pytest.mark.parametrize("layer", list(FORBIDDEN_LIBS))
-def test_layers_do_not_import_foreign_libraries(layer):
-    for f in sorted((PKG / layer).glob("*.py")):
-        for level, name in imports(f):
-            if level == 0:
-                assert name.split(".")[0] not in FORBIDDEN_LIBS[layer], f"{f.relative_to(PKG)} imports {name}"
+def test_every_unit_has_a_rule():
+    assert {u for u, _ in modules()} <= set(ALLOWED)
 
 
-def test_the_checker_can_fail(tmp_path):
-    bad = tmp_path / "m.py"
-    bad.write_text("from ..geometry import parts\nimport trimesh\n")
-    found = imports(bad)
-    assert (2, "geometry") in found and (0, "trimesh") in found
-    assert partgen_layer(2, "geometry", "design") == "geometry" not in ALLOWED["design"]
+def test_layers_hold():
+    assert violations() == []
+
+
+def test_the_checker_can_fail(tmp_path, monkeypatch):
+    """Seed a package with each kind of breach and see every one found."""
+    pkg = tmp_path / "partgen"
+    for d in ("design", "core", "mechanisms/wrist", "mechanisms/gear_chain", "checks"):
+        (pkg / d).mkdir(parents=True)
+    (pkg / "design" / "m.py").write_text("from .. import geometry\nimport yaml\n")
+    (pkg / "geometry").mkdir()
+    (pkg / "core" / "t.py").write_text("from ..design import involute\n")
+    (pkg / "mechanisms" / "wrist" / "kit.py").write_text("from ..gear_chain import kit\n")
+    (pkg / "mechanisms" / "gear_chain" / "kit.py").write_text("import manifold3d\n")
+    (pkg / "checks" / "c.py").write_text("from ..mechanisms.wrist import kit\n")
+    (pkg / "errors.py").write_text("from .pipeline import build\n")
+    (pkg / "pipeline.py").write_text("")
+    monkeypatch.setattr(__import__(__name__), "PKG", pkg)
+    found = "\n".join(violations())
+    for breach in ("design/m.py imports partgen.geometry", "design/m.py imports yaml", "core/t.py imports partgen.design",
+                   "mechanisms/wrist/kit.py imports another mechanism", "mechanisms/gear_chain/kit.py imports manifold3d",
+                   "checks/c.py imports partgen.mechanisms", "errors.py imports partgen.pipeline"):
+        assert breach in found, (breach, found)

@@ -37,11 +37,11 @@ NS = {"m": "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"}
 @pytest.fixture(scope="module")
 def items():
     """(name, print-oriented mesh, count) for every distinct part of the default kit."""
-    from partgen import pipeline
-    from partgen.assembly.kit import build_kit
+    from partgen.mechanisms.gear_chain.resolve import load as chain_load
+    from partgen.mechanisms.gear_chain.kit import build_kit
     from partgen.export.kit import group_parts, printed
 
-    loaded = pipeline.load(ROOT / "configs" / "butterfly.yaml")
+    loaded = chain_load(ROOT / "configs" / "butterfly.yaml")
     kit = build_kit(loaded.mechanism, loaded.params)
     groups = group_parts([printed(p) for p in kit.parts if p.printed])
     return [(g[0].part.name, g[0].mesh, len(g)) for g in groups]
@@ -317,12 +317,12 @@ def test_written_plates_match_the_manifest(checked_kits, design):
     parts = {p["name"]: p for p in man["parts"]}
     files = sorted(folder.glob("plate*.3mf"), key=lambda f: int(re.findall(r"\d+", f.stem)[0]))
     assert [f.name for f in files] == [f"plate{i}.3mf" for i in range(1, len(files) + 1)]
-    W, H = loaded.params.printer.envelope[:2]
-    margin = loaded.params.checks.plate_margin
+    W, H = loaded.spec.params.printer.envelope[:2]
+    margin = loaded.spec.params.checks.plate_margin
     copies = Counter()
     for f in files:
         back = _read_3mf(f.read_bytes())
-        assert back["meta"]["Title"] == man["design"]["name"] == loaded.params.name
+        assert back["meta"]["Title"] == man["design"]["name"] == loaded.spec.params.name
         objs = back["objects"]
         assert len({o["name"] for o in objs.values()}) == len(objs)
         for o in objs.values():

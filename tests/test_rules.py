@@ -12,11 +12,12 @@ import pytest
 import yaml
 
 from partgen import pipeline
-from partgen.assembly.kit import build_kit
+from partgen.mechanisms.gear_chain.resolve import load as chain_load
+from partgen.mechanisms.gear_chain.kit import build_kit
 from partgen.checks.meshing import check_meshes
 from partgen.checks.motion import prepare
 from partgen.checks.printability import check_printability
-from partgen.checks.run import printed_extents
+from partgen.mechanisms.gear_chain.checks import printed_extents
 from partgen.design.drivetrain import Limits, choose_stage, stage_breaches
 from partgen.design.gearing import ToothSystem
 from partgen.design.mechanism import gear_rules
@@ -66,26 +67,26 @@ def test_auto_teeth_pass_the_checks_rules(tmp_path, name):
     curve = yaml.safe_load((CONFIGS / "butterfly.yaml").read_text())["curve"]
     curve.update(sections.pop("curve"))
     try:
-        loaded = pipeline.load(design(tmp_path, curve=curve, **sections))
+        loaded = chain_load(design(tmp_path, curve=curve, **sections))
     except ConfigError as e:  # refused: it must name the rule, and what it says would work must
         msg = str(e)
         assert "broke rules" in msg and "would work" in msg, msg
         m = re.search(r"gears\.module_mm ≤ ([0-9.]+)", msg)
         assert m, msg
         sections["gears"]["module_mm"] = float(m.group(1))
-        loaded = pipeline.load(design(tmp_path, curve=curve, **sections))
+        loaded = chain_load(design(tmp_path, curve=curve, **sections))
     mech = loaded.mechanism
     rules = gear_rules(loaded.params)
     for s in mech.stages:
         assert stage_breaches(s.D, s.M, s.G, rules) == [], s.j
-    assert not [f for f in mech.findings if f.severity == "warning"]
+    assert not [f for f in mech.findings if f.severity == "warn"]
     kit = build_kit(mech, loaded.params)
     assert rule_failures(kit) == []
 
 
 def test_default_design_keeps_its_teeth():
     """The rules were already met by the default's choice: the same teeth as before."""
-    mech = pipeline.load(CONFIGS / "butterfly.yaml").mechanism
+    mech = chain_load(CONFIGS / "butterfly.yaml").mechanism
     assert [(s.D.teeth, s.M.teeth, s.G.teeth) for s in mech.stages[:3]] == [(96, 97, 48), (30, 27, 15), (27, 27, 18)]
 
 
@@ -105,8 +106,8 @@ def test_refusal_names_the_rule_and_what_would_work():
 def test_hand_given_teeth_breaking_a_rule_warn_with_the_checks_rule(tmp_path):
     """The paper's table with addendum 1.1: build warns (code = rule) and check fails that rule."""
     path = design(tmp_path, "butterfly_liu2017", gears={"addendum_coeff": 1.1})
-    loaded = pipeline.load(path)
-    warned = {f.code for f in loaded.mechanism.findings if f.severity == "warning"}
+    loaded = chain_load(path)
+    warned = {f.rule for f in loaded.mechanism.findings if f.severity == "warn"}
     failed = {rule for rule, _ in rule_failures(build_kit(loaded.mechanism, loaded.params))}
     assert failed & RULES, failed
     assert failed & RULES <= warned, (failed, warned)
@@ -114,23 +115,23 @@ def test_hand_given_teeth_breaking_a_rule_warn_with_the_checks_rule(tmp_path):
 
 def test_pen_bore_is_held_to_size_not_to_the_joint_hole_minimum(tmp_path):
     """A Ø8 pen: its Ø8.2 bore is not a running joint (issue: held to the Ø10 joint-hole rule)."""
-    loaded = pipeline.load(design(tmp_path, pen={"diameter_mm": 8.0}))
+    loaded = chain_load(design(tmp_path, pen={"diameter_mm": 8.0}))
     kit = build_kit(loaded.mechanism, loaded.params)
     assert not [m for r, m in rule_failures(kit, 2) if r.startswith("hole")]
     # a printer that holds only Ø9 mm and up to size: the bore fails its own rule, and build said so
     printer = yaml.safe_load((CONFIGS / "printers" / "fortus450mc.yaml").read_text())
     printer["min_hole_to_size_diameter_mm"] = 9.0
     (tmp_path / "p.yaml").write_text(yaml.safe_dump(printer))
-    loaded = pipeline.load(design(tmp_path, printer=tmp_path / "p.yaml", pen={"diameter_mm": 8.0}))
-    warned = [f for f in loaded.mechanism.findings if f.severity == "warning"]
-    assert [(f.code, f.key_path) for f in warned] == [("hole-to-size", "pen.diameter_mm")]
+    loaded = chain_load(design(tmp_path, printer=tmp_path / "p.yaml", pen={"diameter_mm": 8.0}))
+    warned = [f for f in loaded.mechanism.findings if f.severity == "warn"]
+    assert [(f.rule, f.key) for f in warned] == [("hole-to-size", "pen.diameter_mm")]
     fails = rule_failures(build_kit(loaded.mechanism, loaded.params), 2)
     assert [r for r, _ in fails] == ["hole-to-size"] and "pen_holder" in fails[0][1] and "8.2" in fails[0][1]
 
 
 def test_a_bore_that_runs_on_a_pin_is_held_to_the_joint_hole_minimum(tmp_path):
-    loaded = pipeline.load(design(tmp_path, joints={"axle_diameter_mm": 9.5}))
-    warned = {(f.code, f.key_path) for f in loaded.mechanism.findings if f.severity == "warning"}
+    loaded = chain_load(design(tmp_path, joints={"axle_diameter_mm": 9.5}))
+    warned = {(f.rule, f.key) for f in loaded.mechanism.findings if f.severity == "warn"}
     assert ("hole", "joints.axle_diameter_mm") in warned
     fails = rule_failures(build_kit(loaded.mechanism, loaded.params), 2)
     holes = {m.split(":")[0] for r, m in fails if r == "hole"}
@@ -141,9 +142,9 @@ def test_a_bore_that_runs_on_a_pin_is_held_to_the_joint_hole_minimum(tmp_path):
 def test_thin_hub_wall_is_warned_and_the_boss_keeps_the_printers_wall(tmp_path):
     """hub_wall 1.9 mm: the D-boss (half the hub wall under its flat) would leave 0.95 mm; it is
     made at least the printer's 1 mm by construction, and no part has a wall under 1 mm."""
-    loaded = pipeline.load(design(tmp_path, gears={"hub_wall_mm": 1.9}))
-    assert not [f for f in loaded.mechanism.findings if f.severity == "warning"]
+    loaded = chain_load(design(tmp_path, gears={"hub_wall_mm": 1.9}))
+    assert not [f for f in loaded.mechanism.findings if f.severity == "warn"]
     fails = rule_failures(build_kit(loaded.mechanism, loaded.params), 2)
     assert not [m for r, m in fails if r == "wall"], fails
-    loaded = pipeline.load(design(tmp_path, gears={"hub_wall_mm": 0.9}))
-    assert ("wall", "gears.hub_wall_mm") in {(f.code, f.key_path) for f in loaded.mechanism.findings}
+    loaded = chain_load(design(tmp_path, gears={"hub_wall_mm": 0.9}))
+    assert ("wall", "gears.hub_wall_mm") in {(f.rule, f.key) for f in loaded.mechanism.findings}

@@ -9,6 +9,7 @@ import pytest
 import yaml
 
 from partgen import pipeline
+from partgen.mechanisms.gear_chain.resolve import load as chain_load
 from partgen.cli.main import main
 from partgen.design.synthesis import trace
 from partgen.design.trace import built_chain, built_speeds, deviation, hausdorff, target_paths
@@ -17,7 +18,7 @@ ROOT = Path(__file__).parent.parent
 
 
 def load(name):
-    return pipeline.load(ROOT / "configs" / f"{name}.yaml").mechanism
+    return chain_load(ROOT / "configs" / f"{name}.yaml").mechanism
 
 
 def test_auto_design_traces_exactly_the_pruned_curve():
@@ -50,10 +51,11 @@ def test_off_ratio_teeth_bend_the_curve(tmp_path):
     d["teeth"][1]["G"] = 19  # Eq 11 wants 36/18
     cfg = tmp_path / "off.yaml"
     cfg.write_text(yaml.safe_dump(d))
-    loaded, theta, pen, stats, _ = pipeline.trace_design(cfg, 2000, plots_dir=False)
+    loaded, tr, _ = pipeline.trace(cfg, 2000, plots_dir=False)
+    stats, (theta, pen) = tr.stats, (tr.data[:, 0], tr.data[:, 1] + 1j * tr.data[:, 2])
     assert not stats["closes_after_one_turn"]
     assert stats["vs_pruned"]["max_deviation_mm"] > 5.0
-    assert abs(pen[0] - trace(built_chain(loaded.mechanism), np.array([2 * np.pi]))[0]) > 1.0  # open path
+    assert abs(pen[0] - trace(built_chain(loaded.spec.mechanism), np.array([2 * np.pi]))[0]) > 1.0  # open path
 
 
 def test_hausdorff_is_symmetric_and_can_be_zero():

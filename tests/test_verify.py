@@ -118,7 +118,7 @@ def test_issue_designs_build_every_part_as_one_shell(tmp_path, changes):
 def test_write_kit_raises_mesh_error_naming_part_and_design_and_writes_nothing(tmp_path, monkeypatch):
     """A part that is two cubes sharing an edge: build must not write it, and the error is a bug
     (MeshError, not a user's PartgenError) naming the part and the design."""
-    from partgen.assembly import kit as assembly_kit
+    from partgen.mechanisms.gear_chain import kit as assembly_kit
     from partgen.geometry.parts import Part
 
     real = assembly_kit.build_kit
@@ -129,7 +129,9 @@ def test_write_kit_raises_mesh_error_naming_part_and_design_and_writes_nothing(t
         parts = tuple(Part(p.name, p.role, two) if p.name == "crank" else p for p in kit.parts)
         return type(kit)(kit.mechanism, kit.params, kit.stack, parts, kit.static, kit.clock, kit.contacts)
 
-    monkeypatch.setattr(pipeline, "build_kit", broken)
+    from partgen.mechanisms.gear_chain import mechanism as chain
+
+    monkeypatch.setattr(chain, "build_kit", broken)
     dest = tmp_path / "kit"
     with pytest.raises(MeshError) as e:
         pipeline.build(CONFIGS / "butterfly.yaml", dest)

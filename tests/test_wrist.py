@@ -10,9 +10,9 @@ import pytest
 import trimesh
 
 from partgen import pipeline
-from partgen.assembly.wrist import build_wrist
-from partgen.config.loader import load_design
-from partgen.config.wrist import resolve_wrist
+from partgen.mechanisms.wrist.kit import build_wrist
+from partgen.mechanisms import load_design
+from partgen.mechanisms.wrist.resolve import resolve_wrist
 from partgen.design import spherical as sph
 from partgen.geometry import wrist as W
 from partgen.geometry.measure import intersection
@@ -118,7 +118,7 @@ def test_negative_clearance_sockets_interfere():
 def test_wrist_check_passes_and_measures_play(built):
     """Zero overlap, teeth engaged everywhere, play bounded in bending and reported in twist
     (domes hold twist only through the teeth beside the contact: several degrees)."""
-    from partgen.checks.wrist import check_wrist
+    from partgen.mechanisms.wrist.checks import check_wrist
     spec, kit = built
     res = check_wrist(kit, grid=(3, 6), random_poses=4, play_thetas=3)
     assert res.ok, [f.message for f in res.findings]

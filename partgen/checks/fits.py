@@ -11,9 +11,9 @@ import math
 import numpy as np
 import shapely
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..geometry.measure import intersection, place2d
-from .findings import Finding
+from ..core.findings import Finding
 from .motion import PartGeometry
 
 __all__ = ["check_fits"]

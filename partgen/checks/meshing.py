@@ -13,26 +13,16 @@ import numpy as np
 import shapely
 from shapely.geometry import Point, Polygon, box
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..design import involute, rules
 from ..design.gearing import centre_distance
 from ..design.mechanism import gear_rules
 from ..geometry.gear import gear_outline
 from ..geometry.measure import place2d
-from .findings import Finding
+from ..core.findings import Finding
+from ..core.transforms import turn_about
 
 __all__ = ["check_meshes"]
-
-
-def _rot(T: np.ndarray, angle: float, centre) -> np.ndarray:
-    """T followed by a turn of ``angle`` about the vertical axis through ``centre`` (world)."""
-    c, s = math.cos(angle), math.sin(angle)
-    R = np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
-    shift = np.eye(4)
-    shift[:2, 3] = centre
-    back = np.eye(4)
-    back[:2, 3] = -np.asarray(centre)
-    return shift @ R @ back @ T
 
 
 class _Pair:
@@ -42,8 +32,8 @@ class _Pair:
         self.oa, self.ob = outlines[self.ga], outlines[self.gb]
         self.face = kit.params.face_width
 
-    def overlap(self, Ta: np.ndarray, Tb: np.ndarray) -> tuple[float, Point]:
-        """Overlap area (mm²) of the two outlines at these poses, only near the line of centres."""
+    def window(self, Ta: np.ndarray, Tb: np.ndarray):
+        """The region near the line of centres where the two outlines can meet (world, mm)."""
         ca, cb = Ta[:2, 3], Tb[:2, 3]
         d = np.linalg.norm(cb - ca)
         u = (cb - ca) / d
@@ -51,11 +41,19 @@ class _Pair:
         h = 2.5 * self.ga.module
         window = shapely.affinity.rotate(box(-h, -2.2 * h, h, 2.2 * h), math.atan2(u[1], u[0]), origin=(0, 0),
                                          use_radians=True)
-        window = shapely.affinity.translate(window, *pitch_pt)
-        A = shapely.intersection(place2d(self.oa, Ta), window)
+        return shapely.affinity.translate(window, *pitch_pt)
+
+    def overlap(self, Ta: np.ndarray, Tb: np.ndarray, near=None) -> tuple[float, Point]:
+        """Overlap area (mm²) of the two outlines at these poses, only near the line of centres.
+        ``near``: (window, gear a's outline clipped to it) when a and both centres stay put."""
+        window, A = near or self.near(Ta, Tb)
         B = shapely.intersection(place2d(self.ob, Tb), window)
         common = shapely.intersection(A, B)
         return common.area, common.centroid
+
+    def near(self, Ta: np.ndarray, Tb: np.ndarray):
+        window = self.window(Ta, Tb)
+        return window, shapely.intersection(place2d(self.oa, Ta), window)
 
 
 def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
@@ -63,11 +61,12 @@ def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
     pitch = 2 * math.pi / pair.gb.teeth
     lo, hi = 0.0, pitch / 2
     cb = Tb[:2, 3]
-    if pair.overlap(Ta, Tb)[0] > 1e-9:
+    near = pair.near(Ta, Tb)  # b turns about its own centre: the window and a's clipped outline hold
+    if pair.overlap(Ta, Tb, near)[0] > 1e-9:
         return 0.0
     for _ in range(40):
         mid = (lo + hi) / 2
-        if pair.overlap(Ta, _rot(Tb, direction * mid, cb))[0] > 1e-9:
+        if pair.overlap(Ta, turn_about(Tb, (0.0, 0.0, 1.0), (cb[0], cb[1], 0.0), direction * mid), near)[0] > 1e-9:
             hi = mid
         else:
             lo = mid

@@ -16,9 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs
-from .findings import Finding
+from ..core.findings import Finding
 
 __all__ = ["PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
 

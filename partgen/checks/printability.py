@@ -8,10 +8,10 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Point, Polygon
 
-from ..assembly.kit import Kit
+from ..core.protocol import Kit
 from ..design import rules
 from ..design.mechanism import gear_rules
-from .findings import Finding
+from ..core.findings import Finding
 from .motion import PartGeometry
 
 __all__ = ["check_printability"]

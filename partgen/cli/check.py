@@ -4,7 +4,6 @@ Exit 0 when every check holds, 1 when one fails, 2 for bad input."""
 
 from __future__ import annotations
 
-import math
 import sys
 import time
 
@@ -42,69 +41,6 @@ class Bar:
             print("\r" + " " * 78 + "\r", end="", file=sys.stderr, flush=True)
 
 
-def _wrist_table(loaded, result, seconds: float) -> str:
-    f = result.figures
-    lines = [f"{loaded.params.name}: {f['poses']} poses over the workspace (bend ≤ {f['workspace_bend_deg']:g}°: a "
-             f"{f['grid'][0]} × {f['grid'][1]} (θ, ψ) grid and {f['random']} random poses)",
-             f"  largest overlap {f['max_overlap_mm3']:.4f} mm³, least tooth volume engaged {f['min_engaged_mm3']:.2f} mm³",
-             f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
-    lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
-    lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-    lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s")
-    return "\n".join(lines)
-
-
-def _bennett_table(loaded, result, seconds: float) -> str:
-    from ..pipeline_bennett import check_text
-
-    return check_text(loaded, result, seconds)
-
-
-def _table(loaded, result, folder, seconds: float) -> str:
-    if getattr(loaded, "kind", "") == "bennett_butterfly":
-        return _bennett_table(loaded, result, seconds)
-    if loaded.mechanism is None:
-        return _wrist_table(loaded, result, seconds)
-    f = result.figures
-    lines = [f"{loaded.params.name}: {f['parts']} parts, {f['pairs']} pairs, {f['samples']} crank angles over one turn"]
-    counts = {}
-    for x in result.findings:
-        counts.setdefault(x.check, {"fail": 0, "warn": 0, "info": 0})[x.severity] += 1
-    motion = f["motion"]
-    close = motion.get("closest_approach")
-    rows = [
-        ("design", "Eq 11-13, printer minimums", ""),
-        ("interference", "no overlap over the motion", f"{motion['narrow_phase_2d']} exact 2-D tests, {motion['exact_3d']} 3-D"),
-        ("clearance", f"≥ {loaded.params.checks.min_clearance:g} mm between parts that must not touch",
-         f"closest {close['mm']:.3f} mm: {close['parts'][0]}–{close['parts'][1]} at {close['theta_deg']:.0f}°" if close else ""),
-        ("mesh", f"{len(f['meshes'])} meshing pairs", f"contact ratio ≥ {min(r['contact_ratio'] for r in f['meshes']):.2f}, "
-         f"backlash {min(r['measured_backlash_mm'] for r in f['meshes']):.3f}–{max(r['measured_backlash_mm'] for r in f['meshes']):.3f} mm"
-         if f["meshes"] else ""),
-        ("fit", f"{f['fits']['count']} declared contacts", f"smallest radial gap {f['fits']['min_radial_gap_mm']:.3f} mm"
-         if not math.isnan(f["fits"]["min_radial_gap_mm"]) else ""),
-        ("printability", "envelope, holes, walls, tooth tips",
-         f"hole ≥ Ø{f['printability'].get('smallest_hole_mm', 0):.2f}, wall ≥ {f['printability'].get('thinnest_wall_mm', 0):.2f}, "
-         f"tip ≥ {f['printability'].get('narrowest_tip_mm', 0):.2f} mm; {f.get('plates', '?')} build plate(s)"),
-    ]
-    if "kit" in counts:
-        rows.append(("kit", "files match the design", ""))
-    lines.append(f"{'check':<14}{'result':<8}{'what':<44}figures")
-    for name, what, figs in rows:
-        c = counts.get(name, {})
-        status = "FAIL" if c.get("fail") else ("warn" if c.get("warn") else "ok")
-        lines.append(f"{name:<14}{status:<8}{what:<44}{figs}")
-    fails = [x for x in result.findings if x.severity in ("fail", "warn")]
-    if fails:
-        lines.append("")
-        for x in fails:
-            where = f" @ ({', '.join(f'{c:.1f}' for c in x.location)}) mm" if x.location else ""
-            lines.append(f"  {x.severity.upper():<5} {x.check}: {x.message}{where}")
-    lines.append("")
-    lines.append(f"{'OK' if result.ok else 'FAILED'}: {sum(x.severity == 'fail' for x in result.findings)} failures"
-                 f" in {seconds:.1f} s" + (f"; build plates in {folder}/" if folder else ""))
-    return "\n".join(lines)
-
-
 def run(args) -> int:
     from .. import pipeline
 
@@ -113,10 +49,10 @@ def run(args) -> int:
                                                  not args.no_plates, note)
     seconds = time.perf_counter() - t0
     if args.json:
-        out = {"ok": result.ok, "design": loaded.params.name, "config": str(loaded.path),
+        out = {"ok": result.ok, "kind": loaded.mechanism.kind, "design": loaded.name, "config": str(loaded.path),
                "findings": [f.to_dict() for f in result.findings], "figures": result.figures,
                "plates_dir": str(folder) if folder else None, "seconds": round(seconds, 3)}
         print_json(out)
     else:
-        print(_table(loaded, result, folder, seconds))
+        print(loaded.mechanism.check_text(loaded.spec, result, folder, seconds))
     return 0 if result.ok else 1

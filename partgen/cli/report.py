@@ -12,9 +12,9 @@ __all__ = ["add_parser", "run"]
 
 def add_parser(sub) -> None:
     p = sub.add_parser("report", help="write DIR/index.html: design, parts, stacking, trace, check, plates")
-    p.add_argument("config", help="design YAML")
+    p.add_argument("config", help="design YAML, or a kit folder written by `partgen build`")
     p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/report)")
-    p.add_argument("--samples", type=bounded_int(4, 10_000), default=None, help="crank angles for the check")
+    p.add_argument("--samples", type=bounded_int(4, 10_000), default=None, help="samples of the motion for the check")
     p.add_argument("--json", action="store_true", help="print one JSON object (ok, report path) and nothing else")
     p.set_defaults(run=run)
 

@@ -7,19 +7,19 @@ import difflib
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, Mapping, TypeVar
 
 from pydantic import BaseModel, ValidationError
 
+from ..core.printer import PrinterLimits
 from ..errors import ConfigError
-from .schema import BennettDesign, Design, Printer, WristDesign
+from .schema import Printer
 from .yamlio import read_yaml_file
 
 __all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path", "PRINTERS_DIR", "shipped_printers",
-           "printer_path", "KINDS"]
+           "printer_path", "printer_limits"]
 
 PRINTERS_DIR = Path(__file__).resolve().parent.parent / "printers"
-KINDS = {"gear_chain": Design, "wrist": WristDesign, "bennett_butterfly": BennettDesign}
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -27,7 +27,7 @@ M = TypeVar("M", bound=BaseModel)
 @dataclass(frozen=True)
 class LoadedDesign:
     path: Path
-    design: Design | WristDesign | BennettDesign
+    design: BaseModel  # the mechanism's schema (``partgen.mechanisms.<kind>.schema``)
     printer_path: Path
     printer: Printer
 
@@ -142,21 +142,29 @@ def printer_path(value: str, design: Path, key: str = "printer", folders=()) -> 
     return path
 
 
-def load_design(path: str | Path) -> LoadedDesign:
-    """Design and printer profile of a design file; the printer path is relative to the design."""
+def load_design(path: str | Path, kinds: Mapping[str, type[BaseModel]]) -> LoadedDesign:
+    """Design and printer profile of a design file; the printer path is relative to the design.
+    ``kinds``: kind -> schema (the mechanisms' registry): an unknown or misspelt ``kind`` is one
+    error on ``kind`` naming the kinds there are, before any other key is read."""
     path = Path(path)
     data = read_yaml(path)
     kind = data.get("kind")
-    if not isinstance(kind, str) or kind not in KINDS:
-        names = ", ".join(KINDS)
+    if not isinstance(kind, str) or kind not in kinds:
+        names = ", ".join(kinds)
         if kind is None:
             raise ConfigError(path, "kind", f"required key is missing: say which mechanism this is ({names})")
         if not isinstance(kind, str):
             raise ConfigError(path, "kind", f"should be one of {names}, got a {type(kind).__name__}")
-        close = difflib.get_close_matches(kind, list(KINDS), n=1, cutoff=0.6)
+        close = difflib.get_close_matches(kind, list(kinds), n=1, cutoff=0.6)
         hint = f"did you mean {close[0]!r}? " if close else ""
         raise ConfigError(path, "kind", f"unknown mechanism {str(kind)[:40]!r}: {hint}(kinds: {names})")
-    design = validate(KINDS[kind], data, path)
+    design = validate(kinds[kind], data, path)
     ppath = printer_path(design.printer, path)
     printer = validate(Printer, read_yaml(ppath), ppath)
     return LoadedDesign(path, design, ppath, printer)
+
+
+def printer_limits(p: Printer) -> PrinterLimits:
+    """The validated printer profile as the kernels read it (mm)."""
+    return PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
+                         p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm, p.min_hole_to_size_diameter_mm)

@@ -15,9 +15,10 @@ from functools import lru_cache
 from fractions import Fraction
 from typing import Sequence
 
+from ..core.findings import Finding
 from ..errors import DesignError
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from .rules import Breach, GearRules, check_generable, gear_breaches, mesh_breaches
+from .rules import Breach, GearRules, ToothSystemError, check_generable, gear_breaches, mesh_breaches
 
 __all__ = [
     "Limits", "Stage", "Finding", "eq11_ratios", "idler_centre", "make_stage",
@@ -44,14 +45,10 @@ class Limits:
     rules: GearRules | None = None  # the mesh and gear rules `partgen check` holds the kit to
 
 
-@dataclass(frozen=True)
-class Finding:
-    """A verification result: ``severity`` "warning" (fails `check`) or "info"; ``key_path`` the config key."""
-
-    severity: str
-    code: str
-    message: str
-    key_path: str = ""
+def design_finding(severity: str, rule: str, message: str, key: str = "") -> Finding:
+    """A design rule's verdict as the one ``Finding``: check "design", severity "warn" (fails
+    `check`) or "info", the rule's code and the config key it traces back to."""
+    return Finding("design", severity, message, key=key, rule=rule)
 
 
 @dataclass(frozen=True)
@@ -180,8 +177,8 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
     if rules is not None:  # a rack that cannot generate a gear (fillets that overlap) is the design's error
         try:
             check_generable(make_gear(zmin, system))
-        except DesignError as e:
-            if e.key_path != "gears.profile_shift":  # a pointed tooth is one gear's: tip-width
+        except ToothSystemError as e:
+            if e.field != "profile_shift":  # a pointed tooth is one gear's: tip-width
                 raise
     best, best_key, turned = None, None, Counter()
     for td, tg in ratio_multiples(ratio, zmin):
@@ -276,39 +273,39 @@ def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:
     D, M, G, S = stage.D, stage.M, stage.G, stage.length
     given = Fraction(D.teeth, G.teeth)
     if given != stage.ratio:
-        out.append(Finding("warning", "eq11", f"link {stage.j}: T_D/T_G = {D.teeth}/{G.teeth} = {float(given):.6f}, "
+        out.append(design_finding("warn", "eq11", f"link {stage.j}: T_D/T_G = {D.teeth}/{G.teeth} = {float(given):.6f}, "
                            f"Eq 11 needs {stage.ratio} = {float(stage.ratio):.6f}: the pen will not trace the curve", key))
     gap = S - D.tip_radius - G.tip_radius
     if gap <= 0:
-        out.append(Finding("warning", "eq12", f"link {stage.j}: tip circles of D ({D.teeth}) and G ({G.teeth}) "
+        out.append(design_finding("warn", "eq12", f"link {stage.j}: tip circles of D ({D.teeth}) and G ({G.teeth}) "
                            f"{'touch' if abs(gap) < 1e-9 else 'overlap'}: m/2(T_D+T_G) + 2a = {S - gap:.3f} mm, "
                            f"not < S = {S:.3f} mm (Eq 12)", key))
     elif gap < limits.tip_gap:
-        out.append(Finding("warning", "eq12-margin", f"link {stage.j}: tip circles of D and G clear by only {gap:.3f} mm "
+        out.append(design_finding("warn", "eq12-margin", f"link {stage.j}: tip circles of D and G clear by only {gap:.3f} mm "
                            f"(< {limits.tip_gap:g} mm)", key))
     m = D.module
     if not (m / 2 * (3 * D.teeth + G.teeth) >= S or m / 2 * (D.teeth + 3 * G.teeth) >= S):
-        out.append(Finding("warning", "eq13", f"link {stage.j}: Eq 13 fails, no idler as large as D or G reaches both", key))
+        out.append(design_finding("warn", "eq13", f"link {stage.j}: Eq 13 fails, no idler as large as D or G reaches both", key))
     for name, centre, a in (("D", (0.0, 0.0), stage.a_DM), ("G", (S, 0.0), stage.a_MG)):
         d = math.dist(stage.idler, centre)
         if abs(d - a) > 1e-6:
-            out.append(Finding("warning", "idler-place", f"link {stage.j}: the idler stands {d:.3f} mm from {name}, "
+            out.append(design_finding("warn", "idler-place", f"link {stage.j}: the idler stands {d:.3f} mm from {name}, "
                                f"the mesh needs {a:.3f} mm", key + ".idler_mm"))
     reach = stage.a_DM + stage.a_MG - S
     if reach < limits.idler_reach:
-        out.append(Finding("warning", "idler-reach", f"link {stage.j}: idler {M.teeth} reaches with {reach:.3f} mm to spare "
+        out.append(design_finding("warn", "idler-reach", f"link {stage.j}: idler {M.teeth} reaches with {reach:.3f} mm to spare "
                            f"(< {limits.idler_reach:g} mm; 0 means D, M, G stand in one line)", key))
     for name, g in stage.gears.items():
         if 2 * g.pitch_radius < limits.min_pitch_diameter - 1e-9:
-            out.append(Finding("warning", "small-gear", f"link {stage.j}: {name} ({g.teeth} teeth) pitch diameter "
+            out.append(design_finding("warn", "small-gear", f"link {stage.j}: {name} ({g.teeth} teeth) pitch diameter "
                                f"{2 * g.pitch_radius:.2f} mm < printer's smallest gear {limits.min_pitch_diameter:g} mm", key))
         if 2 * g.root_radius < limits.min_root_diameter - 1e-9:
-            out.append(Finding("warning", "bore", f"link {stage.j}: {name} ({g.teeth} teeth) root diameter "
+            out.append(design_finding("warn", "bore", f"link {stage.j}: {name} ({g.teeth} teeth) root diameter "
                                f"{2 * g.root_radius:.2f} mm leaves no room for its bore and hub "
                                f"(needs {limits.min_root_diameter:g} mm)", key))
         if g.undercut:
-            out.append(Finding("info", "undercut", f"link {stage.j}: {name} ({g.teeth} teeth, x = {g.profile_shift:g}) "
+            out.append(design_finding("info", "undercut", f"link {stage.j}: {name} ({g.teeth} teeth, x = {g.profile_shift:g}) "
                                "is undercut: the cutter removes the foot of the involute", key))
     for b in stage_breaches(D, M, G, limits.rules):
-        out.append(Finding("warning", b.rule, f"link {stage.j}: {b.message}", key))
+        out.append(design_finding("warn", b.rule, f"link {stage.j}: {b.message}", key))
     return out

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.transforms import rot2
 from .mechanism import Mechanism
 
 __all__ = ["GearPose", "link_angles", "joint_positions", "gear_poses", "mesh_pairs", "clockings", "mesh_phase_error"]
@@ -45,9 +46,10 @@ def joint_positions(mech: Mechanism, theta: float) -> np.ndarray:
     return np.column_stack([p.real, p.imag])
 
 
-def _rot(angle: float, v: tuple[float, float]) -> tuple[float, float]:
-    c, s = math.cos(angle), math.sin(angle)
-    return (c * v[0] - s * v[1], s * v[0] + c * v[1])
+def _turned(angle: float, v) -> tuple[float, float]:
+    """A link-frame vector (2,) mm in the world at the link angle ``angle`` rad."""
+    x, y = rot2(angle) @ np.asarray(v, dtype=float)
+    return (float(x), float(y))
 
 
 def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
@@ -61,7 +63,7 @@ def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
     for s in mech.stages:
         j = s.j
         rel_d = a[j - 1] - a[j]  # D_j relative to the carrier B_j
-        idler = _rot(a[j], s.idler)
+        idler = _turned(a[j], s.idler)
         out += [
             GearPose(f"D{j}", j - 1, tuple(J[j - 1]), a[j - 1]),
             GearPose(f"M{j}", j, (J[j - 1][0] + idler[0], J[j - 1][1] + idler[1]),
@@ -72,7 +74,7 @@ def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
         j = s.j
         out += [GearPose(f"D{j}", j - 1, tuple(J[j - 1]), a[j - 1]), GearPose(f"G{j + 1}", j + 1, tuple(J[j]), a[j + 1])]
         if s.tensioner is not None:
-            t = _rot(a[j], s.tensioner)
+            t = _turned(a[j], s.tensioner)
             out.append(GearPose(f"T{j}", j, (J[j - 1][0] + t[0], J[j - 1][1] + t[1]), a[j]))
     return out
 

@@ -9,12 +9,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 
+from ..core.printer import PrinterLimits
 from ..errors import DesignError
 from . import involute
 from .belt import BeltProfile, BeltStage, design_belt_stage
 from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
-from .drivetrain import Finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
+from .drivetrain import Finding, design_finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
@@ -33,21 +34,6 @@ class Joints:
     running_clearance: float
     press_clearance: float
     axial_gap: float
-
-
-@dataclass(frozen=True)
-class PrinterLimits:
-    """A printer's profile (mm). ``min_hole``: the smallest hole that runs reliably on a pin or
-    axle; ``min_hole_to_size``: the smallest hole it holds to size (a press-fit D, a pen bore)."""
-
-    name: str
-    envelope: tuple[float, float, float]
-    resolution: float
-    min_hole: float
-    min_gear: float
-    min_link: float
-    min_wall: float
-    min_hole_to_size: float = 3.0
 
 
 @dataclass(frozen=True)
@@ -170,7 +156,7 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     findings: list[Finding] = []
     for j, link in enumerate(links, 1):
         if link.length < params.printer.min_link - 1e-9:
-            findings.append(Finding("warning", "short-link", f"link {j} ({link.name}) is {link.length:.2f} mm, "
+            findings.append(design_finding("warn", "short-link", f"link {j} ({link.name}) is {link.length:.2f} mm, "
                                     f"shorter than the printer's smallest link {params.printer.min_link:g} mm",
                                     f"links[{j - 1}].length_mm"))
     ratios = eq11_ratios(inputs.chain.speeds)
@@ -240,7 +226,7 @@ def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[F
 
     def add(b, key, hint):
         if b is not None:
-            out.append(Finding("warning", b.rule, f"{b.message}: {hint}", key))
+            out.append(design_finding("warn", b.rule, f"{b.message}: {hint}", key))
 
     add(hole_breach(params.bore, True, pr.min_hole, pr.min_hole_to_size), "joints.axle_diameter_mm",
         f"gears and plates turn on the axles in bores of Ø{params.bore:.2f} mm (axle + running clearance); "
@@ -273,7 +259,7 @@ def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Find
     """Warnings for the drive pair (teeth given by ``drive.teeth``): the rules it breaks."""
     broken = gear_breaches(G1, rules, f"G1 and the drive gear ({G1.teeth})") + mesh_breaches(
         G1, drive, centre_distance(G1, drive), rules, ("G1", "the drive gear"))
-    return [Finding("warning", b.rule, f"drive: {b.message}", "drive.teeth") for b in broken]
+    return [design_finding("warn", b.rule, f"drive: {b.message}", "drive.teeth") for b in broken]
 
 
 def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
@@ -311,7 +297,7 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
         stages.append(st)
         if st.tensioner is None:
             links[j - 1] = _replace(link, length=st.length)
-            findings.append(Finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
+            findings.append(design_finding("info", "belt-link", f"link {j} ({link.name}): no room for a tensioner; the link is "
                                     f"{st.link_change:+.3f} mm so a {st.belt_teeth}-tooth belt fits", "belts"))
     G1, drive, drive_centre = _drive(params)
     findings += drive_findings(G1, drive, gear_rules(params)) + kit_findings(params, b)

@@ -24,7 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["WristSpec", "WristPair", "valid_end", "ratio", "ratio_ode", "mating_angle_meridian", "mating_angle_latitude",
+from ..core.transforms import rot_axis
+
+__all__ = ["WristPair", "valid_end", "ratio", "ratio_ode", "mating_angle_meridian", "mating_angle_latitude",
            "pitch_radii", "gear2_pose", "meridian_arc", "tooth_rows", "RangeError"]
 
 
@@ -120,12 +122,6 @@ def pitch_radii(theta, I: float, A: float) -> tuple[np.ndarray, np.ndarray]:
     return A * i / (1 + i), A / (1 + i)
 
 
-def _rot(axis: np.ndarray, angle: float) -> np.ndarray:
-    a = np.asarray(axis, float) / np.linalg.norm(axis)
-    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
-
-
 def gear2_pose(theta: float, psi: float, I: float, A: float) -> np.ndarray:
     """(4, 4) pose of gear 2 for a bend (θ, ψ), gear 1 fixed with its axis on +z at the origin.
 
@@ -138,7 +134,7 @@ def gear2_pose(theta: float, psi: float, I: float, A: float) -> np.ndarray:
     n = np.array([-math.sin(psi), math.cos(psi), 0.0])
     flip = np.diag([1.0, -1.0, -1.0])  # half a turn about x: local +z points back at gear 1
     T = np.eye(4)
-    T[:3, :3] = _rot(n, theta + phi) @ flip
+    T[:3, :3] = rot_axis(n, theta + phi) @ flip
     T[:3, 3] = A * u
     return T
 
@@ -207,28 +203,3 @@ def tooth_rows(I: float, A: float, long_pitch: float, ring_teeth=(1, 6, 12)) -> 
         lat2 = 2 * math.pi * float(r2) * math.sin(ph) / n if k else 0.0
         rows.append(Row(k, n, th, ph, lat1, lat2))
     return WristPair(I, A, tuple(rows), long_pitch)
-
-
-@dataclass(frozen=True)
-class WristSpec:
-    """A wrist pair's design numbers (mm, rad)."""
-
-    name: str
-    I: float
-    A: float
-    long_pitch: float
-    ring_teeth: tuple[int, ...]
-    dome_radius: float
-    tooth_height: float
-    clearance: float
-    max_bend: float
-    theta_steps: int
-    psi_steps: int
-    shaft_diameter: float
-    press_clearance: float
-    base_height: float
-    tol: float
-    density: float
-    material: str
-    printer: object  # PrinterLimits
-    cross: object = None  # GearSpec of an ABENICS-style cross gear on the spherical pitch, or None

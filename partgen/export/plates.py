@@ -40,6 +40,7 @@ import shapely
 import trimesh
 from shapely.geometry import Polygon, box
 
+from ..core.transforms import rot2
 from .threemf import Object3MF, write_3mf
 
 __all__ = ["Placement", "Layout", "DoesNotFit", "footprint", "best_turn", "layout", "plate_meshes",
@@ -91,13 +92,6 @@ def footprint(mesh: trimesh.Trimesh, margin: float) -> Polygon:
     """The part's footprint on the plate: convex hull of its vertices on xy, grown by margin/2
     (round joins as 8 chords per quarter circle, which lie at most 0.5 % of margin/2 inside)."""
     return _hull(mesh).buffer(margin / 2.0, quad_segs=8)
-
-
-def _rot2(angle: float) -> np.ndarray:
-    """2×2 rotation matrix, exact at multiples of 90° (a quarter turn leaves no 1e-16 noise)."""
-    c, s = math.cos(angle), math.sin(angle)
-    c, s = (float(round(t)) if abs(t - round(t)) < 1e-12 else t for t in (c, s))
-    return np.array([[c, -s], [s, c]])
 
 
 def _support(pts: np.ndarray, grow: float) -> np.ndarray:
@@ -287,7 +281,7 @@ def _turns(hull: np.ndarray, W: float, H: float, grow: float, angles: int, free:
         out += [(base + k * math.pi / 2) % (2 * math.pi) for k in range(4)]
 
     def fits(a: float) -> bool:
-        w, h = np.ptp(hull @ _rot2(a).T, axis=0) + 2 * grow
+        w, h = np.ptp(hull @ rot2(a).T, axis=0) + 2 * grow
         return w <= W + _FIT_TOL and h <= H + _FIT_TOL
 
     if not any(fits(a) for a in out):
@@ -333,7 +327,7 @@ def layout(items: list[tuple[str, trimesh.Trimesh, int]], plate_xy: tuple[float,
         hull = shapely.get_coordinates(hull_poly)
         shapes: list[_Shape] = []
         for a in _turns(hull, W, H, grow, angles, free):
-            h = _support(hull @ _rot2(a).T, grow)
+            h = _support(hull @ rot2(a).T, grow)
             if any(np.max(np.abs(h - s.h)) < 0.05 for s in shapes):
                 continue
             shapes.append(_Shape(a, h))
@@ -345,7 +339,7 @@ def layout(items: list[tuple[str, trimesh.Trimesh, int]], plate_xy: tuple[float,
                              "margin", name, float("nan"), float("nan"))
         if not fits:
             t, room = best_turn(hull, (W, H), grow)
-            ext = np.ptp(hull @ _rot2(t).T, axis=0) + margin
+            ext = np.ptp(hull @ rot2(t).T, axis=0) + margin
             raise DoesNotFit(
                 f"part {name!r} does not fit on a {W:g} x {H:g} mm plate in any turn about z: "
                 f"with the {margin:g} mm margin it sticks out {-room:.1f} mm at best "
@@ -387,13 +381,13 @@ def layout(items: list[tuple[str, trimesh.Trimesh, int]], plate_xy: tuple[float,
 def placement_matrix(p: Placement) -> np.ndarray:
     """(4, 4) the placement of a copy: turn by ``p.angle`` about z, then move by (x, y, 0) mm."""
     m = np.eye(4)
-    m[:2, :2] = _rot2(p.angle)
+    m[:2, :2] = rot2(p.angle)
     m[:2, 3] = p.x, p.y
     return m
 
 
 def _place(mesh: trimesh.Trimesh, p: Placement) -> trimesh.Trimesh:
-    r = _rot2(p.angle)
+    r = rot2(p.angle)
     v = np.asarray(mesh.vertices, dtype=float)
     out = np.empty_like(v)
     out[:, :2] = v[:, :2] @ r.T + (p.x, p.y)
@@ -465,7 +459,7 @@ def plate_picture(lay: Layout, footprints: dict[str, Polygon], path: str | Path,
         plate = lay.plates[i] if i < len(lay.plates) else ()
         area = 0.0
         for p in plate:
-            r = _rot2(p.angle)
+            r = rot2(p.angle)
             xy = np.asarray(footprints[p.name].exterior.coords) @ r.T + (p.x, p.y)
             area += footprints[p.name].area
             ax.add_patch(MplPolygon(xy, closed=True, fc=colour[p.name], ec="0.2", lw=0.6,

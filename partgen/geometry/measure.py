@@ -14,7 +14,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from .solid import mesh_arrays
 
-__all__ = ["Slab", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts"]
+__all__ = ["Slab", "section", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts"]
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,11 @@ def to_shapely(cs: m3d.CrossSection) -> Polygon | MultiPolygon:
         holes = [h for h in holes if h not in mine]
         polys.append(Polygon(o.exterior.coords, [h.exterior.coords for h in mine]))
     return polys[0] if len(polys) == 1 else MultiPolygon(polys)
+
+
+def section(solid: m3d.Manifold, z: float) -> Polygon | MultiPolygon:
+    """The solid cut by the plane at height ``z`` (its local frame), as shapely geometry, mm."""
+    return to_shapely(solid.slice(z))
 
 
 def slabs(solid: m3d.Manifold) -> tuple[Slab, ...]:

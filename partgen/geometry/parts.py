@@ -17,6 +17,7 @@ import shapely
 from shapely import affinity
 from shapely.geometry import Polygon, box
 
+from ..core.parts import Part
 from ..design.gearing import GearSpec
 from .gear import gear_body
 from .outline import circle, d_shape, hull_of_discs
@@ -26,21 +27,6 @@ __all__ = ["Part", "DFit", "fixed_gear", "bored_gear", "link_plate", "base_plate
            "pen_holder"]
 
 FLAT_DEPTH = 1.0  # mm: a D's flat sits this far inside its circle
-
-
-@dataclass(frozen=True)
-class Part:
-    """A part as designed: its solid in the local frame; ``print_flip`` prints it upside down;
-    ``printed`` False for a bought part (a belt), modelled for the checks but not exported."""
-
-    name: str
-    role: str
-    solid: m3d.Manifold
-    print_flip: bool = False
-    gear: GearSpec | None = None
-    clocking: float = 0.0
-    printed: bool = True
-    info: tuple = ()
 
 
 @dataclass(frozen=True)

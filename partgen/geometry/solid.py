@@ -7,7 +7,7 @@ import manifold3d as m3d
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
-__all__ = ["cross_section", "extrude", "slab", "union", "prisms", "mesh_arrays", "FLIP", "print_arrays",
+__all__ = ["cylinder", "cross_section", "extrude", "slab", "union", "prisms", "mesh_arrays", "FLIP", "print_arrays",
            "float32_sound"]
 
 
@@ -21,6 +21,11 @@ def _rings(geom) -> list[np.ndarray]:
         out.append(np.asarray(p.exterior.coords)[:-1])
         out += [np.asarray(r.coords)[:-1] for r in p.interiors]
     return out
+
+
+def cylinder(height: float, radius: float, segments: int = 0, center: bool = False) -> m3d.Manifold:
+    """A cylinder along z, ``height`` and ``radius`` mm (centred on z = 0 if ``center``)."""
+    return m3d.Manifold.cylinder(height, radius, -1.0, segments, center)
 
 
 def cross_section(geom: Polygon | MultiPolygon | np.ndarray) -> m3d.CrossSection:

@@ -1,0 +1,88 @@
+"""What every mechanism offers the pipeline, the CLI and export: the ``Kit`` and ``Mechanism``
+protocols. A mechanism is one object (see ``partgen.mechanisms.REGISTRY``); the pipeline and the
+CLI know nothing of any particular kind."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Protocol, runtime_checkable
+
+import numpy as np
+
+from .findings import Result
+from .parts import Part
+from .printer import PrinterLimits
+
+__all__ = ["Kit", "Mechanism", "Motion", "Trace", "Section"]
+
+
+@runtime_checkable
+class Kit(Protocol):
+    """A built kit: its parts and where each one is over the motion parameter."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def parts(self) -> tuple[Part, ...]: ...
+    @property
+    def printer(self) -> PrinterLimits: ...
+    @property
+    def density(self) -> float: ...  # g/mm³ of the printed material
+    @property
+    def material(self) -> str: ...
+
+    def poses(self, t: float = 0.0) -> dict[str, np.ndarray]:
+        """name -> (4, 4) world-from-local pose of every part at motion parameter ``t``."""
+        ...
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The motion parameter of a mechanism: label, unit and the range a check sweeps."""
+
+    label: str
+    unit: str
+    range: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Trace:
+    """What `trace` found: figures (JSON-able), named files (name -> bytes, written into the plots
+    folder) and the text the CLI prints. ``data``: (n, k) rows for ``--csv`` with ``columns``."""
+
+    stats: dict
+    files: dict = field(default_factory=dict)
+    text: str = ""
+    columns: tuple[str, ...] = ()
+    data: np.ndarray | None = None
+
+
+Section = tuple[str, str]  # (title, html) of a report page
+
+
+class Mechanism(Protocol):
+    """One kind of mechanism, as a vertical slice (schema, resolver, kit, checks, trace, report)."""
+
+    kind: str
+    title: str
+    schema: type  # the pydantic model of its design YAML
+    motion: Motion
+
+    def resolve(self, raw) -> object:
+        """The validated YAML (``config.loader.LoadedDesign``) → the mechanism's spec (mm, rad);
+        ``ConfigError`` naming the key for anything the user can fix."""
+        ...
+
+    def build(self, spec, progress: Callable | None = None) -> Kit:
+        """Every part of the kit; ``ConfigError`` (with the key) when a size leaves no part."""
+        ...
+
+    def refuse(self, spec, kit: Kit) -> None: ...                    # DesignError: `build` writes no such kit
+    def design_summary(self, spec, kit: Kit) -> dict: ...            # the manifest's "design"
+    def kit_files(self, spec, kit: Kit) -> dict[str, bytes]: ...     # design.yaml (pinned), printer.yaml
+    def plate_margin(self, spec) -> float: ...                       # mm between parts on a plate
+    def check(self, spec, kit: Kit, samples: int | None, progress: Callable | None) -> Result: ...
+    def trace(self, spec, kit: Kit | None, samples: int | None) -> Trace: ...
+    def report_sections(self, spec, kit: Kit, result: Result, trace: Trace, pictures) -> list[Section]: ...
+    def bill_text(self, spec, manifest: dict) -> str: ...
+    def check_text(self, spec, result: Result) -> str: ...

@@ -1,0 +1,5 @@
+"""bennett_butterfly (see mechanism.py)."""
+
+from .mechanism import MECHANISM
+
+__all__ = ["MECHANISM"]

@@ -1,0 +1,5 @@
+"""gear_chain (see mechanism.py)."""
+
+from .mechanism import MECHANISM
+
+__all__ = ["MECHANISM"]

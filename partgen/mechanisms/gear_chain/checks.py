@@ -1,0 +1,70 @@
+"""Run every check on a kit and gather the result."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from .kit import Kit
+from ...geometry.solid import mesh_arrays
+from ...core.findings import Finding, Result
+from ...checks.fits import check_fits
+from ...checks.meshing import check_meshes
+from ...checks.motion import prepare, sample_angles, sweep
+from .belts import check_belts
+from ...checks.printability import check_printability
+
+__all__ = ["check_kit", "printed_extents"]
+
+
+def printed_extents(kit: Kit) -> dict[str, np.ndarray]:
+    """(3,) x, y, z extents of each part as it lies on the build plate, mm (printing it flipped
+    about x keeps them)."""
+    out = {}
+    for p in kit.parts:
+        if not p.printed:
+            continue
+        v, _ = mesh_arrays(p.solid)
+        out[p.name] = v.max(axis=0) - v.min(axis=0)
+    return out
+
+
+def check_kit(kit: Kit, samples: int | None = None, progress=None) -> Result:
+    """Design verification, interference and clearance over the motion, meshes, fits, printability."""
+    res = Result()
+    t0 = time.perf_counter()
+    for f in kit.mechanism.findings:
+        if f.severity == "warn":
+            res.add(Finding("design", "fail", f"{f.key}: {f.message}"))
+        else:
+            res.add(Finding("design", "info", f"{f.key}: {f.message}"))
+    thetas = sample_angles(samples or kit.params.checks.samples)
+    geo = prepare(kit)
+    t1 = time.perf_counter()
+    found, motion = sweep(kit, geo, thetas, progress)
+    res.add(*found)
+    t2 = time.perf_counter()
+    found, meshes = check_meshes(kit, thetas)
+    res.add(*found)
+    t3 = time.perf_counter()
+    found, fits = check_fits(kit, geo, thetas)
+    res.add(*found)
+    found, printing = check_printability(kit, geo, printed_extents(kit))
+    res.add(*found)
+    found, belts = check_belts(kit)
+    res.add(*found)
+    if belts:
+        res.figures["belts"] = belts
+    t4 = time.perf_counter()
+    pairs = len(kit.parts) * (len(kit.parts) - 1) // 2
+    res.figures.update(
+        parts=len(kit.parts), pairs=pairs, samples=len(thetas), motion=motion, meshes=meshes,
+        fits={"count": len(fits), "min_radial_gap_mm": min((r["radial_gap_mm"] for r in fits if "radial_gap_mm" in r),
+                                                           default=math.nan), "rows": fits},
+        printability=printing,
+        seconds={"prepare": round(t1 - t0, 3), "motion": round(t2 - t1, 3), "meshes": round(t3 - t2, 3),
+                 "fits_and_printability": round(t4 - t3, 3)},
+        pair_tests_per_second=round(pairs * len(thetas) / max(t2 - t1, 1e-9)))
+    return res

@@ -1,0 +1,322 @@
+"""The kit of a gear-coupled chain: every part built for its place in the stack, and its pose at any
+crank angle.
+
+Stacking (z up, the base's top face at z = 0; g = axial gap, f = face width, t = plate thickness):
+gear layer j (j = 0..n-1) spans [L_j, L_j + f] with L_j = g + j·(f + 2g + t); plate j
+(j = 1..n) spans [P_j, P_j + t] with P_j = L_{j-1} + f + g. Layer 0 holds G1 and the drive
+gear; layer j holds D_j, M_j and G_{j+1}. Every gear rests on a thrust ring (height g) of what is
+under it: rings on the base and plate tops, or, for D_j, the top of G_j's boss, which stands g
+proud of plate j. G_j's collar (height g) spaces plate j above D_{j-1} and M_{j-1}.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...core.transforms import pose_z
+from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
+from ...design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
+from ...errors import DesignError
+from ...geometry import parts as P
+from ...geometry.parts import DFit, Part
+
+__all__ = ["Stack", "Contact", "Kit", "build_kit"]
+
+FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
+CRANK_THICKNESS = 6.0
+HANDLE_R, HANDLE_LEN = 5.0, 30.0
+LEG_R = 8.0
+PEN_WALL = 2.0
+PEN_FLOOR = 2.0  # mm of solid under the pen in its holder
+MIN_AXLE = 2 * (P.FLAT_DEPTH + 1.0)  # mm: a D-flat 1 mm deep with 1 mm of axle left past it
+
+
+@dataclass(frozen=True)
+class Stack:
+    """z-levels of the stack, mm."""
+
+    gap: float
+    face: float
+    plate: float
+
+    @property
+    def pitch(self) -> float:
+        return self.face + 2 * self.gap + self.plate
+
+    def layer(self, j: int) -> float:
+        """Bottom of gear layer j (0 = G1 and the drive gear)."""
+        return self.gap + j * self.pitch
+
+    def plate_z(self, j: int) -> float:
+        """Bottom of plate j (1-based)."""
+        return self.layer(j - 1) + self.face + self.gap
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Two parts meant to touch, and how (radial clearances, mm, are design values).
+
+    kind: "running" (turns on it, radial gap = running clearance / 2), "press" (D-fit, gap =
+    press clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh).
+    window: world z-range where the fit is (the bore's length), None for thrust and mesh.
+    """
+
+    a: str
+    b: str
+    kind: str
+    window: tuple[float, float] | None = None
+    radial_gap: float = 0.0
+
+
+@dataclass(frozen=True)
+class Kit:
+    """Parts of a mechanism, and where each one is at any crank angle."""
+
+    mechanism: Mechanism
+    params: KitParams
+    stack: Stack
+    parts: tuple[Part, ...]
+    static: dict = field(default_factory=dict)  # name -> (4, 4) pose of parts fixed to the base
+    clock: dict = field(default_factory=dict)
+    contacts: tuple[Contact, ...] = ()
+
+    @property
+    def name(self) -> str:
+        return self.params.name
+
+    @property
+    def printer(self):
+        return self.params.printer
+
+    @property
+    def density(self) -> float:
+        return self.params.density
+
+    @property
+    def material(self) -> str:
+        return self.params.material
+
+    def part(self, name: str) -> Part:
+        return next(p for p in self.parts if p.name == name)
+
+    def poses(self, theta: float) -> dict[str, np.ndarray]:
+        """name -> (4, 4) world-from-local pose of every part at crank angle θ (rad)."""
+        mech, st = self.mechanism, self.stack
+        a = link_angles(mech, theta)
+        J = joint_positions(mech, theta)
+        gp = gear_poses(mech, theta, self.clock)
+        out = dict(self.static)
+        for j in range(1, len(mech.chain.links) + 1):
+            out[f"B{j}"] = pose_z(J[j - 1][0], J[j - 1][1], st.plate_z(j), a[j])
+        out["pen_holder"] = pose_z(J[-1][0], J[-1][1], st.plate_z(len(mech.chain.links)), a[-1])
+        for name, p in gp.items():
+            layer = 0 if name in ("G1", "drive") else int(name[1:]) - (1 if name[0] == "G" else 0)
+            out[name] = pose_z(p.centre[0], p.centre[1], st.layer(layer), p.angle)
+        for s in mech.belt_stages:  # a belt keeps its shape in its link's frame
+            out[f"belt{s.j}"] = pose_z(J[s.j - 1][0], J[s.j - 1][1], st.layer(s.j), a[s.j])
+        drive = gp["drive"]
+        for name in ("drive_axle", "crank"):
+            z = 0.0 if name == "drive_axle" else -self.params.base_thickness - st.gap
+            out[name] = pose_z(drive.centre[0], drive.centre[1], z, drive.angle)
+        return out
+
+
+def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: dict | None = None) -> Kit:
+    """Build every part of the kit. ``progress(name)`` is called as each part is made.
+
+    ``clock_error`` (name -> rad) makes fixed gears with their teeth turned that far off the
+    clocking the mesh needs, as a badly made part would be: for fault studies."""
+    say = progress or (lambda name: None)
+    if params.joints.axle_diameter < MIN_AXLE:
+        raise DesignError(f"{params.joints.axle_diameter:g} mm leaves no room for the D-flats that fix gears and plates "
+                          f"(a flat {P.FLAT_DEPTH:g} mm deep): use at least {MIN_AXLE:g} mm", "joints.axle_diameter_mm")
+    st = Stack(params.joints.axial_gap, params.face_width, params.plate_thickness)
+    g, f, t = st.gap, st.face, st.plate
+    tol = params.system.chord_tolerance
+    jn = params.joints
+    ra = jn.axle_diameter / 2
+    bore_r = params.bore / 2
+    post = DFit(ra, jn.press_clearance)
+    # G's D-boss: the wall under its flat is half the hub wall (the flat cuts FLAT_DEPTH deep)
+    # (at least the printer's thinnest wall, with the bore polygon's excess over its circle)
+    boss = DFit(bore_r + P.FLAT_DEPTH + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL),
+                jn.press_clearance)
+    # a collar keeps at least the boss's wall around the bore
+    collar_min = bore_r + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL)
+    rb = boss.radius
+    n = len(mech.chain.links)
+    clock = clockings(mech)
+    for name, err in (clock_error or {}).items():
+        clock[name] += err
+    parts: list[Part] = []
+
+    def add(part: Part):
+        say(part.name)
+        parts.append(part)
+
+    # gears
+    def fixed(name: str, spec):
+        collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
+        solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
+        add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
+
+    holes = {"D": post.hole(FEATURE_TOL), "round": P.disc(bore_r, FEATURE_TOL, hole=True)}
+    bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
+
+    def loose(name: str, spec, hole: str):
+        key = (spec, hole)
+        if key not in bored:
+            bored[key] = P.bored_gear(spec, f, holes[hole])
+        add(Part(name, "gear", bored[key], gear=spec))
+
+    fixed("G1", mech.G1)
+    loose("drive", mech.drive, "D")
+    for s in mech.stages:
+        loose(f"D{s.j}", s.D, "D")
+        loose(f"M{s.j}", s.M, "round")
+        fixed(f"G{s.j + 1}", s.G)
+    params_belts = mech.belt_stages and _belts(mech)
+    for s in mech.belt_stages:
+        bs = params_belts
+        prof = s.D.profile
+        for name, pulley, hole in ((f"D{s.j}", s.D, "D"), (f"G{s.j + 1}", s.G, "round")):
+            section = P.pulley_outline(pulley.teeth, prof.pitch, prof.pitch_line_offset, prof.groove_depth,
+                                       prof.groove_radius, FEATURE_TOL)
+            body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f, holes[hole],
+                                 FEATURE_TOL)
+            if name[0] == "G":
+                collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
+                body = P.fixed_hub(body, f, bore_r, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
+            add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
+                                                 ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4)))))
+        if s.tensioner is not None:
+            r = s.tensioner_radius
+            roller = P.prisms([(P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
+                               (P.annulus(bore_r, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
+                               (P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
+            add(Part(f"T{s.j}", "idler", roller))
+        _, path = belt_path_of(s, prof)
+        z0 = bs.flange_thickness + 0.1
+        band = P.belt_band(path, prof.pitch_line_offset + prof.groove_depth, prof.back_height, z0, z0 + prof.width)
+        add(Part(f"belt{s.j}", "belt", band, printed=False,
+                 info=(("profile", prof.name), ("teeth", s.belt_teeth), ("length_mm", s.belt_teeth * prof.pitch),
+                       ("width_mm", prof.width))))
+
+    # link plates
+    if params.pen_holder_height < PEN_FLOOR + 1.0:
+        raise DesignError(f"{params.pen_holder_height:g} mm leaves no bore above the holder's {PEN_FLOOR:g} mm floor: "
+                          f"make it at least {PEN_FLOOR + 1.0:g} mm", "pen.holder_height_mm")
+    pen_spigot = DFit(params.pen_diameter / 2 + PEN_WALL, jn.press_clearance)
+    prox_r = rb + jn.press_clearance / 2 + params.boss_wall
+    for j, link in enumerate(mech.chain.links, 1):
+        S, Pz = link.length, st.plate_z(j)
+        feats, idler, distal_hole, posts = [], None, None, []
+        if j < n:
+            stage = (mech.stages or mech.belt_stages)[j - 1]
+            top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
+            # thrust rings are discs the post or pin runs through: an annulus would share its inner
+            # wall with the post's, and two coincident walls unite into a zero-width crack
+            feats += [(P.disc(rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
+            posts.append(P.shaft(post, [("round", t, top - Pz)] + ([("D", top - Pz, top - Pz + f)] if j + 1 < n else []),
+                                 FEATURE_TOL, (S, 0.0)))
+            c = stage.idler if mech.stages else stage.tensioner
+            if c is not None:
+                feats += [(P.disc(rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
+                idler = (c, ra + params.boss_wall)
+            distal = (S, ra + params.boss_wall)
+        else:
+            distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
+            distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
+        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole, posts)
+        add(Part(f"B{j}", "link", solid))
+
+    # base, legs, drive axle, crank, pen holder
+    bt = params.base_thickness
+    dx, dy = mech.drive_centre
+    a_drive = math.hypot(dx, dy)
+    u = np.array([dx, dy]) / a_drive
+    v = np.array([-u[1], u[0]])
+    sweep = params.crank_radius + HANDLE_R + 4.0
+    w = sweep + LEG_R + 2.0
+    legs = [tuple(float(q) for q in s * u + sgn * w * v) for s in (-LEG_R, a_drive + LEG_R) for sgn in (1, -1)]
+    crank_depth = g + CRANK_THICKNESS + HANDLE_LEN
+    if params.leg_height < crank_depth + 3.0:
+        raise DesignError(f"legs of {params.leg_height:g} mm leave no room under the base for the crank "
+                          f"(needs {crank_depth + 3.0:g} mm)", "base.leg_height_mm")
+    outline = P.hull_of_discs([((0.0, 0.0), ra + params.boss_wall + 4.0), ((dx, dy), rb + params.boss_wall)]
+                              + [(c, LEG_R + 2.0) for c in legs], FEATURE_TOL)
+    holes = [P.disc(bore_r, FEATURE_TOL, (dx, dy), hole=True)] + [P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c, hole=True)
+                                                                   for c in legs]
+    outline = outline.difference(P.union2d(holes))
+    top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
+    feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+    ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
+    add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post])))
+    leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
+    for i in range(len(legs)):
+        add(Part(f"leg{i + 1}", "leg", leg_solid))
+    zc = -bt - g
+    add(Part("drive_axle", "axle", P.drive_axle(post, [("D", zc - CRANK_THICKNESS, zc), ("round", zc, g), ("D", g, g + f)],
+                                                FEATURE_TOL)))
+    add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
+                                       HANDLE_LEN, FEATURE_TOL), print_flip=True))
+    add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
+                                                      (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, PEN_FLOOR, FEATURE_TOL),
+             print_flip=True))
+
+    contacts = _contacts(mech, params, st, len(legs))
+    static = {"base": pose_z()}
+    static.update({f"leg{i + 1}": pose_z(c[0], c[1], -bt) for i, c in enumerate(legs)})
+    return Kit(mech, params, st, tuple(parts), static, clock, contacts)
+
+
+def _contacts(mech: Mechanism, params: KitParams, st: Stack, n_legs: int) -> tuple[Contact, ...]:
+    """Every pair of parts the design means to touch: fits on axles, D-fits, thrust faces, meshes."""
+    g, f, t = st.gap, st.face, st.plate
+    run, press = params.joints.running_clearance / 2, params.joints.press_clearance / 2
+    bt = params.base_thickness
+    n = len(mech.chain.links)
+    body = lambda j: (st.layer(j), st.layer(j) + f)  # noqa: E731
+    plate = lambda j: (st.plate_z(j), st.plate_z(j) + t)  # noqa: E731
+    out = [Contact("G1", "base", "running", body(0), run), Contact("G1", "B1", "press", plate(1), press),
+           Contact("G1", "drive", "mesh"), Contact("drive", "drive_axle", "press", body(0), press),
+           Contact("drive", "base", "thrust"), Contact("drive_axle", "base", "running", (-bt, 0.0), run),
+           Contact("crank", "drive_axle", "press", (-bt - g - 6.0, -bt - g), press),
+           Contact("pen_holder", f"B{n}", "press", plate(n), press)]
+    out += [Contact(f"leg{i + 1}", "base", "press", (-bt, 0.0), press) for i in range(n_legs)]
+    for s in mech.stages:
+        j = s.j
+        carrier = "base" if j == 1 else f"B{j - 1}"
+        out += [Contact(f"D{j}", carrier, "press", body(j), press), Contact(f"D{j}", f"G{j}", "thrust"),
+                Contact(f"M{j}", f"B{j}", "running", body(j), run), Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
+                Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
+                Contact(f"D{j}", f"M{j}", "mesh"), Contact(f"M{j}", f"G{j + 1}", "mesh")]
+    for s in mech.belt_stages:
+        j = s.j
+        carrier = "base" if j == 1 else f"B{j - 1}"
+        out += [Contact(f"D{j}", carrier, "press", body(j), press), Contact(f"D{j}", f"G{j}", "thrust"),
+                Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
+                Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
+                Contact(f"belt{j}", f"D{j}", "belt"), Contact(f"belt{j}", f"G{j + 1}", "belt")]
+        if s.tensioner is not None:
+            out += [Contact(f"T{j}", f"B{j}", "running", body(j), run), Contact(f"belt{j}", f"T{j}", "belt")]
+    return tuple(out)
+
+
+def _belts(mech: Mechanism):
+    """The belt settings a belt mechanism was made with (flanges, tensioner): kept on its stages."""
+    return mech.belt_stages[0].settings
+
+
+def belt_path_of(stage, profile):
+    """The pitch path of a belt stage in its link frame: around D, the tensioner (if any) and G."""
+    from ...design.belt import belt_path
+    D = ((0.0, 0.0), stage.D.pitch_radius, 1)
+    G = ((stage.length, 0.0), stage.G.pitch_radius, 1)
+    if stage.tensioner is None:
+        return belt_path([D, G])
+    T = (stage.tensioner, stage.tensioner_radius + profile.back_height, -1)
+    return belt_path([D, T, G] if stage.tensioner[1] < 0 else [G, T, D])

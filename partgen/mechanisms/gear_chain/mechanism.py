@@ -1,0 +1,320 @@
+"""The gear chain (``kind: gear_chain``, with its belt variant) behind the Mechanism protocol: a
+Fourier linkage whose links are turned by gear (or belt) stages, drawn by a pen."""
+
+from __future__ import annotations
+
+import html
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ...config.loader import LoadedDesign, read_yaml
+from ...config.yamlio import dump_yaml
+from ...core.findings import Result
+from ...core.protocol import Motion, Trace
+from ...errors import ConfigError, DesignError
+from ...geometry.measure import empty_parts, oversize
+from .kit import Kit, build_kit
+from .resolve import ChainSpec, resolve_spec
+from .schema import Design
+
+__all__ = ["GearChain", "MECHANISM"]
+
+CSV_HEADER = "theta_rad,x_mm,y_mm\n"
+ROLE_COLOURS = {"gear": "#4c78a8", "link": "#f58518", "base": "#8c8c8c", "leg": "#b0b0b0", "axle": "#54a24b",
+                "crank": "#e45756", "pen_holder": "#b279a2", "pulley": "#4c78a8", "idler": "#72b7b2"}
+
+
+def _r6(x) -> float:
+    return float(round(float(x), 6))
+
+
+def size_key(spec: ChainSpec, name: str) -> str:
+    """The config key a part's size traces back to."""
+    mech = spec.mechanism
+    if name.startswith("B"):
+        j = int(name[1:])
+        return "curve.scale_mm_per_unit" if mech.source == "curve" else f"links[{j - 1}].length_mm"
+    if name in ("G1", "drive"):
+        return "drive.teeth"
+    if name[0] in "DMG" and name[1:].isdigit():
+        j = int(name[1:]) - (1 if name[0] == "G" else 0)
+        return "teeth" if mech.auto_teeth else f"teeth[{j - 1}].{name[0]}"
+    return {"base": "base", "crank": "base.crank_radius_mm", "pen_holder": "pen"}.get(name, name)
+
+
+def oversize_parts(spec: ChainSpec, kit: Kit) -> list[tuple[str, str, np.ndarray]]:
+    """Parts whose extents (any axis order) exceed the printer envelope: (name, key, extents)."""
+    return [(p.name, size_key(spec, p.name), ext) for p, ext in oversize(kit.parts, kit.params.printer.envelope)]
+
+
+class GearChain:
+    kind = "gear_chain"
+    title = "gear chain"
+    schema = Design
+    motion = Motion("crank angle", "rad", (0.0, 2 * math.pi))
+    csv_header = CSV_HEADER
+    trace_needs_kit = False
+    role_colours = ROLE_COLOURS
+
+    def resolve(self, raw: LoadedDesign) -> ChainSpec:
+        return resolve_spec(raw)
+
+    def name(self, spec: ChainSpec) -> str:
+        return spec.params.name
+
+    def build(self, spec: ChainSpec, progress=None) -> Kit:
+        try:
+            kit = build_kit(spec.mechanism, spec.params, progress)
+        except DesignError as e:
+            raise ConfigError(spec.path, e.key_path, e.problem) from None
+        return kit
+
+    def refuse(self, spec: ChainSpec, kit: Kit) -> None:
+        """``build`` writes no kit with an empty part or a part larger than the printer (``check`` reports them)."""
+        for part in empty_parts(kit.parts):
+            raise ConfigError(spec.path, size_key(spec, part.name), f"part {part.name} comes out empty: a size in the "
+                              "design leaves it no material")
+        big = oversize_parts(spec, kit)
+        if big:
+            name, key, ext = big[0]
+            env = " × ".join(f"{x:g}" for x in spec.params.printer.envelope)
+            raise ConfigError(spec.path, key, f"part {name} measures {' × '.join(f'{x:.1f}' for x in ext[::-1])} mm "
+                              f"and does not fit the printer's {env} mm envelope in any orientation"
+                              + (f" (and {len(big) - 1} more parts)" if len(big) > 1 else ""))
+
+    def findings(self, spec: ChainSpec):
+        """What the design rules found before any geometry (build prints them)."""
+        return list(spec.mechanism.findings)
+
+    def design_summary(self, spec: ChainSpec, kit: Kit) -> dict:
+        """The manifest's "design" entry: chain, stages, drive, stack, findings."""
+        mech, params = spec.mechanism, spec.params
+        return {
+            "name": params.name,
+            "kind": self.kind,
+            "config": spec.path.name,
+            "printer": params.printer.name,
+            "material": params.material,
+            "density_g_cm3": _r6(params.density * 1000),
+            "crank_angle_rad": 0.0,
+            "module_mm": params.system.module,
+            "pressure_angle_deg": _r6(math.degrees(params.system.pressure_angle)),
+            "teeth_mode": "auto" if mech.auto_teeth else "explicit",
+            "ground_offset_mm": [_r6(mech.chain.offset.real), _r6(mech.chain.offset.imag)],
+            "links": [{"j": j, "name": l.name, "speed": l.speed, "length_mm": _r6(l.length),
+                       "initial_angle_deg": _r6(math.degrees(l.phase))} for j, l in enumerate(mech.chain.links, 1)],
+            "stages": [{"j": s.j, "ratio": str(s.ratio), "teeth": {"D": s.D.teeth, "M": s.M.teeth, "G": s.G.teeth},
+                        "profile_shift": {"D": _r6(s.D.profile_shift), "M": _r6(s.M.profile_shift),
+                                          "G": _r6(s.G.profile_shift)},
+                        "a_DM_mm": _r6(s.a_DM), "a_MG_mm": _r6(s.a_MG),
+                        "idler_mm": [_r6(s.idler[0]), _r6(s.idler[1])]} for s in mech.stages],
+            "drive": {"teeth": mech.drive.teeth, "centre_mm": [_r6(c) for c in mech.drive_centre]},
+            "stack_mm": {"axial_gap": kit.stack.gap, "face_width": kit.stack.face, "plate": kit.stack.plate,
+                         "layers": [_r6(kit.stack.layer(j)) for j in range(len(mech.stages) + 1)],
+                         "plates": [_r6(kit.stack.plate_z(j)) for j in range(1, len(mech.chain.links) + 1)]},
+            "findings": [{"severity": f.severity, "code": f.rule, "key": f.key, "message": f.message}
+                         for f in mech.findings],
+        }
+
+    def kit_files(self, spec: ChainSpec, kit: Kit, raw: LoadedDesign) -> dict[str, bytes]:
+        """The design and its printer profile, as a kit folder keeps them: design.yaml names
+        printer.yaml beside it."""
+        data = read_yaml(raw.path)
+        data["printer"] = "printer.yaml"
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+
+    def plate_margin(self, spec: ChainSpec) -> float:
+        return spec.params.checks.plate_margin
+
+    def check(self, spec: ChainSpec, kit: Kit, samples: int | None = None, progress=None) -> Result:
+        from .checks import check_kit
+
+        return check_kit(kit, samples, progress)
+
+    def trace(self, spec: ChainSpec, kit: Kit | None, samples: int | None, out: Path | None,
+              animate: bool = True) -> Trace:
+        """The pen of the chain as built over one crank turn vs its targets; trace.png/.svg/.gif into ``out``."""
+        from ...design.synthesis import trace as trace_chain
+        from ...design.trace import built_chain, built_speeds, deviation, target_paths
+
+        mech = spec.mechanism
+        samples = samples or 3600
+        theta = 2 * np.pi * np.arange(samples) / samples
+        pen = trace_chain(built_chain(mech), theta)
+        targets = target_paths(mech, theta)
+        speeds = built_speeds(mech)
+        stats = {"samples": samples, "speeds": [str(w) for w in speeds],
+                 "closes_after_one_turn": all(w.denominator == 1 for w in speeds),
+                 "vs_pruned": deviation(pen, targets["pruned"], theta).to_dict()}
+        if "full" in targets:
+            stats.update(deviation(pen, targets["full"], theta).to_dict())
+            stats["pruned_vs_full"] = deviation(targets["pruned"], targets["full"], theta).to_dict()
+        files = []
+        if out is not None:
+            from .trace_plots import trace_animation, trace_figure
+
+            head = {k: v for k, v in stats.items() if k.endswith("_mm")} or \
+                {k: v for k, v in stats["vs_pruned"].items() if k.endswith("_mm")}
+            if "worst_theta_rad" in stats:
+                head["worst_theta_rad"] = stats["worst_theta_rad"]
+            trace_figure(mech, head, out / "trace.png", out / "trace.svg",
+                         f"{spec.params.name}: the pen over one crank turn (mm)")
+            files = ["trace.png", "trace.svg"]
+            if animate:
+                trace_animation(mech, out / "trace.gif")
+                files.append("trace.gif")
+        return Trace(stats, files, columns=("theta_rad", "x_mm", "y_mm"),
+                     data=np.column_stack([theta, pen.real, pen.imag]))
+
+    def csv(self, trace: Trace) -> str:
+        return CSV_HEADER + "".join(f"{t:.9f},{x:.6f},{y:.6f}\n" for t, x, y in trace.data)
+
+    # --- what the CLI prints -------------------------------------------------------------------
+    def bill_text(self, spec: ChainSpec, man: dict, dest, seconds: float) -> str:
+        mech = spec.mechanism
+        parts = man["parts"]
+        n_gears = sum(p["count"] for p in parts if p["role"] == "gear")
+        mass = sum(p["mass_g"] * p["count"] for p in parts)
+        lines = [f"{spec.params.name}: {len(mech.chain.links)} links, {n_gears} gears, "
+                 f"{sum(p['count'] for p in parts)} parts ({len(parts)} distinct), {mass:.0f} g of {spec.params.material}",
+                 f"{'part':<12}{'role':<11}{'count':>5}{'triangles':>11}{'volume cm3':>12}{'mass g':>9}  bbox mm"]
+        for p in parts:
+            lines.append(f"{p['name']:<12}{p['role']:<11}{p['count']:>5}{p['triangles']:>11}"
+                         f"{p['volume_mm3'] / 1000:>12.2f}{p['mass_g']:>9.1f}  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])}")
+        for b in man.get("purchased", []):
+            lines.append(f"buy: {b['name']} ({b['role']}" + (f", {b['teeth']} teeth" if "teeth" in b else "") + ")")
+        warn = sum(f.severity == "warn" for f in mech.findings)
+        lines.append(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {seconds:.2f} s"
+                     + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
+        return "\n".join(lines)
+
+    def check_text(self, spec: ChainSpec, result: Result, folder, seconds: float) -> str:
+        f = result.figures
+        lines = [f"{spec.params.name}: {f['parts']} parts, {f['pairs']} pairs, {f['samples']} crank angles over one turn"]
+        counts: dict = {}
+        for x in result.findings:
+            counts.setdefault(x.check, {"fail": 0, "warn": 0, "info": 0})[x.severity] += 1
+        motion = f["motion"]
+        close = motion.get("closest_approach")
+        meshes = f["meshes"]
+        rows = [
+            ("design", "Eq 11-13, printer minimums", ""),
+            ("interference", "no overlap over the motion",
+             f"{motion['narrow_phase_2d']} exact 2-D tests, {motion['exact_3d']} 3-D"),
+            ("clearance", f"≥ {spec.params.checks.min_clearance:g} mm between parts that must not touch",
+             f"closest {close['mm']:.3f} mm: {close['parts'][0]}–{close['parts'][1]} at {close['theta_deg']:.0f}°"
+             if close else ""),
+            ("mesh", f"{len(meshes)} meshing pairs",
+             f"contact ratio ≥ {min(r['contact_ratio'] for r in meshes):.2f}, backlash "
+             f"{min(r['measured_backlash_mm'] for r in meshes):.3f}–{max(r['measured_backlash_mm'] for r in meshes):.3f} mm"
+             if meshes else ""),
+            ("fit", f"{f['fits']['count']} declared contacts", f"smallest radial gap {f['fits']['min_radial_gap_mm']:.3f} mm"
+             if not math.isnan(f["fits"]["min_radial_gap_mm"]) else ""),
+            ("printability", "envelope, holes, walls, tooth tips",
+             f"hole ≥ Ø{f['printability'].get('smallest_hole_mm', 0):.2f}, wall ≥ "
+             f"{f['printability'].get('thinnest_wall_mm', 0):.2f}, tip ≥ {f['printability'].get('narrowest_tip_mm', 0):.2f}"
+             f" mm; {f.get('plates', '?')} build plate(s)"),
+        ]
+        if "kit" in counts:
+            rows.append(("kit", "files match the design", ""))
+        lines.append(f"{'check':<14}{'result':<8}{'what':<44}figures")
+        for name, what, figs in rows:
+            c = counts.get(name, {})
+            status = "FAIL" if c.get("fail") else ("warn" if c.get("warn") else "ok")
+            lines.append(f"{name:<14}{status:<8}{what:<44}{figs}")
+        fails = [x for x in result.findings if x.severity in ("fail", "warn")]
+        if fails:
+            lines.append("")
+            for x in fails:
+                where = f" @ ({', '.join(f'{c:.1f}' for c in x.location)}) mm" if x.location else ""
+                lines.append(f"  {x.severity.upper():<5} {x.check}: {x.message}{where}")
+        lines.append("")
+        lines.append(f"{'OK' if result.ok else 'FAILED'}: {sum(x.severity == 'fail' for x in result.findings)} failures"
+                     f" in {seconds:.1f} s" + (f"; build plates in {folder}/" if folder else ""))
+        return "\n".join(lines)
+
+    def trace_text(self, spec: ChainSpec, trace: Trace, folder) -> str:
+        stats = trace.stats
+        lines = [f"{spec.params.name}: pen over one crank turn, {stats['samples']} samples; link speeds as built "
+                 f"{', '.join(stats['speeds'])}"
+                 + ("" if stats["closes_after_one_turn"] else " (fractional: the path does not close after one turn)"),
+                 f"{'traced vs':<28}{'max (same θ) mm':>16}{'rms mm':>10}{'Hausdorff mm':>14}"]
+        rows = [("the design's chain (pruned)", stats["vs_pruned"])]
+        if "max_deviation_mm" in stats:
+            rows.insert(0, ("the full Fourier series", stats))
+            rows.append(("(pruned vs full)", stats["pruned_vs_full"]))
+        for label, d in rows:
+            lines.append(f"{label:<28}{d['max_deviation_mm']:>16.3f}{d['rms_mm']:>10.3f}{d['hausdorff_mm']:>14.3f}")
+        if folder:
+            lines.append(f"plots: {folder}/{', '.join(trace.files)}")
+        return "\n".join(lines)
+
+    # --- the report page -------------------------------------------------------------------------
+    def report_sections(self, spec: ChainSpec, kit: Kit, result: Result, trace: Trace, files: dict,
+                        common: dict) -> list[tuple[str, str]]:
+        """Design, stacking, trace and check sections (the pipeline adds the bill of parts, what to
+        buy and the build plates). ``files``: the trace's files (name -> bytes)."""
+        import tempfile
+
+        from ...design.trace import built_speeds
+        from ...export import report as R
+        from .plots import stack_section
+
+        mech, params = spec.mechanism, spec.params
+        with tempfile.TemporaryDirectory() as tmpdir:
+            stack_section(kit, Path(tmpdir) / "stack.png")
+            stack_png = (Path(tmpdir) / "stack.png").read_bytes()
+        r3 = lambda x: round(float(x), 3)  # noqa: E731
+        speeds = built_speeds(mech)
+        links = [[j, l.name, l.speed, r3(l.length), r3(math.degrees(l.phase)), str(w)]
+                 for j, (l, w) in enumerate(zip(mech.chain.links, speeds), 1)]
+        stages = [[s.j, str(s.ratio), f"{s.D.teeth} / {s.M.teeth} / {s.G.teeth}",
+                   f"{s.D.profile_shift:.3f} / {s.M.profile_shift:.3f} / {s.G.profile_shift:.3f}",
+                   r3(s.a_DM), r3(s.a_MG), f"({s.idler[0]:.2f}, {s.idler[1]:.2f})"] for s in mech.stages]
+        belts = [[s.j, str(s.ratio), f"{s.D.teeth} / {s.G.teeth}", s.belt_teeth, r3(s.slack),
+                  "–" if s.tensioner is None else f"({s.tensioner[0]:.2f}, {s.tensioner[1]:.2f})", r3(s.link_change)]
+                 for s in mech.belt_stages]
+        design = (R.table(["link", "name", "speed", "length mm", "initial angle °", "speed as built"], links, left=2)
+                  + (R.table(["stage", "Eq 11 ratio", "teeth D / M / G", "profile shift D / M / G", "a_DM mm", "a_MG mm",
+                              "idler (link frame) mm"], stages, left=1) if stages else "")
+                  + (R.table(["stage", "Eq 11 ratio", "pulley teeth D / G", "belt teeth", "slack taken up mm",
+                              "tensioner (link frame) mm", "link change mm"], belts, left=1) if belts else "")
+                  + f"<p>Module {params.system.module:g} mm, pressure angle {math.degrees(params.system.pressure_angle):g}°, "
+                  f"backlash {params.system.backlash_per_gear:g} mm per gear, face width {params.face_width:g} mm, "
+                  f"printer {html.escape(params.printer.name)}, material {html.escape(params.material)}.</p>")
+        stack_html = f'<figure>{R.img(stack_png, "section through the joints")}<figcaption>True section through ' \
+                     "the joints, links straightened.</figcaption></figure>"
+        stats = trace.stats
+        dev = [["the full Fourier series", stats.get("max_deviation_mm", "–"), stats.get("rms_mm", "–"),
+                stats.get("hausdorff_mm", "–")],
+               ["the design's chain (pruned)", stats["vs_pruned"]["max_deviation_mm"], stats["vs_pruned"]["rms_mm"],
+                stats["vs_pruned"]["hausdorff_mm"]]]
+        trace_html = (R.table(["traced (as built) vs", "max, same θ (mm)", "rms (mm)", "Hausdorff (mm)"], dev)
+                      + f'<div class="grid"><figure>{R.img(files["trace.png"], "trace", width=640)}</figure>'
+                      + (f'<figure>{R.img(files["trace.gif"], "animation", "image/gif", width=440)}<figcaption>One '
+                         "crank turn.</figcaption></figure>" if "trace.gif" in files else "") + "</div>")
+        fails = [[f.check, f'<span class="{f.severity}">{f.severity}</span>', html.escape(f.message),
+                  "" if f.theta is None else f"{math.degrees(f.theta):.1f}"] for f in result.findings]
+        fig = result.figures
+        close = fig["motion"].get("closest_approach")
+        summary = (f'<p class="{"ok" if result.ok else "fail"}">'
+                   f'{"Every check holds" if result.ok else "The kit fails its checks"}'
+                   f" — {fig['samples']} crank angles, {fig['pairs']} part pairs, {len(fig['meshes'])} meshes, "
+                   f"{fig['fits']['count']} fits; closest approach "
+                   + (f"{close['mm']:.3f} mm ({close['parts'][0]}–{close['parts'][1]})" if close else "–")
+                   + f"; {fig.get('plates', '?')} build plate(s).</p>")
+        mesh_rows = [[" / ".join(r["pair"]), " / ".join(map(str, r["teeth"])), r["centre_distance_mm"], r["backlash_mm"],
+                      r["measured_backlash_mm"], r["contact_ratio"]] for r in fig["meshes"]]
+        check_html = (summary
+                      + (R.table(["check", "severity", "finding", "crank °"], fails, left=3, raw={1}) if fails else "")
+                      + R.table(["mesh", "teeth", "centre distance mm", "backlash mm", "measured mm", "contact ratio"],
+                                mesh_rows))
+        return [("Design", design), ("Stacking", stack_html), ("Trace", trace_html), ("Check", check_html)]
+
+    def subtitle(self, spec: ChainSpec) -> str:
+        return f"{spec.path.name} — {len(spec.mechanism.chain.links)} links"
+
+
+MECHANISM = GearChain()

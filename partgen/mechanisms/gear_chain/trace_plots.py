@@ -1,0 +1,97 @@
+"""Pictures of what a chain draws: target vs traced with the links at a few crank angles, and an
+animation of the mechanism drawing the curve (matplotlib, no display needed)."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
+
+from ...design.mechanism import Mechanism  # noqa: E402
+from ...design.synthesis import Chain, trace  # noqa: E402
+from ...design.trace import built_chain, target_paths  # noqa: E402
+
+__all__ = ["trace_figure", "trace_animation"]
+
+LINK_ANGLES_DEG = (0, 60, 150, 250)
+
+
+def _joints(chain: Chain, theta: float) -> np.ndarray:
+    """(n + 1, 2) joint positions of a chain (ground pivot at its offset), mm."""
+    steps = np.array([l.vector(np.array([theta]))[0] for l in chain.links])
+    p = chain.offset + np.concatenate([[0j], np.cumsum(steps)])
+    return np.column_stack([p.real, p.imag])
+
+
+def _curves(mech: Mechanism, n: int = 4000):
+    theta = np.linspace(0, 2 * np.pi, n)
+    paths = target_paths(mech, theta)
+    built = built_chain(mech)
+    return theta, paths, built, trace(built, theta)
+
+
+def trace_figure(mech: Mechanism, stats: dict, png, svg=None, title: str = "") -> None:
+    """Target (full series), the design's chain and the chain as built, links drawn at a few
+    crank angles, arrows for the pen's direction, and which way is up."""
+    theta, paths, built, pen = _curves(mech)
+    fig, ax = plt.subplots(figsize=(9, 9))
+    if "full" in paths:
+        ax.plot(paths["full"].real, paths["full"].imag, color="#999", lw=3.5, alpha=0.6, label="target: full Fourier series")
+    ax.plot(paths["pruned"].real, paths["pruned"].imag, color="#4c78a8", lw=1.8, label="target: the design's links (pruned)")
+    ax.plot(pen.real, pen.imag, color="#e45756", lw=0.9, ls="--", label="traced by the kit as built (its teeth)")
+    for k, deg in enumerate(LINK_ANGLES_DEG):
+        J = _joints(built, np.radians(deg))
+        ax.plot(J[:, 0], J[:, 1], "-o", color=plt.cm.viridis(k / len(LINK_ANGLES_DEG)), lw=1.2, ms=2.5, alpha=0.8,
+                label=f"links at crank {deg}°")
+    step = len(theta) // 24
+    d = np.gradient(pen)[::step]
+    d = d / np.maximum(np.abs(d), 1e-12) * 0.04 * np.ptp(pen.real)  # direction only, a fixed length
+    ax.quiver(pen.real[::step], pen.imag[::step], d.real, d.imag, angles="xy", scale_units="xy", scale=1,
+              color="#e45756", width=0.003, alpha=0.9)
+    ax.plot([mech.chain.offset.real], [mech.chain.offset.imag], "k^", ms=9, label="ground pivot")
+    if "max_deviation_mm" in stats and "full" in paths:
+        k = int(np.argmin(np.abs(theta - stats["worst_theta_rad"])))
+        ax.annotate(f"largest deviation {stats['max_deviation_mm']:.1f} mm", (paths["full"][k].real, paths["full"][k].imag),
+                    xytext=(20, 20), textcoords="offset points", arrowprops={"arrowstyle": "->"})
+    ax.annotate("up (+y)", xy=(0.04, 0.96), xytext=(0.04, 0.86), xycoords="axes fraction",
+                arrowprops={"arrowstyle": "-|>", "lw": 2}, ha="center", fontsize=9)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    text = ", ".join(f"{k.split('_mm')[0].replace('_', ' ')} {v:.2f} mm" for k, v in stats.items() if k.endswith("_mm"))
+    ax.set_title(title or f"{text}")
+    ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    if svg is not None:
+        fig.savefig(svg)
+    plt.close(fig)
+
+
+def trace_animation(mech: Mechanism, gif, frames: int = 90, fps: int = 15) -> None:
+    """The chain (as built) turning through one cycle, the pen leaving its path behind."""
+    theta, paths, built, pen = _curves(mech, 2000)
+    fig, ax = plt.subplots(figsize=(5.5, 5.5), dpi=80)
+    target = paths.get("full", paths["pruned"])
+    ax.plot(target.real, target.imag, color="#bbb", lw=2)
+    drawn, = ax.plot([], [], color="#e45756", lw=1.3)
+    arm, = ax.plot([], [], "-o", color="#4c78a8", lw=1.5, ms=3)
+    reach = np.abs(np.concatenate([target, pen]) - mech.chain.offset).max() + 20
+    ax.set_xlim(mech.chain.offset.real - reach, mech.chain.offset.real + reach)
+    ax.set_ylim(mech.chain.offset.imag - reach, mech.chain.offset.imag + reach)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+
+    def frame(i):
+        t = 2 * np.pi * i / frames
+        J = _joints(built, t)
+        arm.set_data(J[:, 0], J[:, 1])
+        upto = int(len(theta) * i / frames) + 1
+        drawn.set_data(pen.real[:upto], pen.imag[:upto])
+        return arm, drawn
+
+    FuncAnimation(fig, frame, frames=frames + 1, blit=True).save(gif, writer=PillowWriter(fps=fps))
+    plt.close(fig)

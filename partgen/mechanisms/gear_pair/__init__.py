@@ -1,0 +1,5 @@
+"""gear_pair (see mechanism.py)."""
+
+from .mechanism import MECHANISM
+
+__all__ = ["MECHANISM"]

@@ -1,0 +1,5 @@
+"""wrist (see mechanism.py)."""
+
+from .mechanism import MECHANISM
+
+__all__ = ["MECHANISM"]

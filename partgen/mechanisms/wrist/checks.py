@@ -1,0 +1,88 @@
+"""Checks of a wrist gear pair over its 2-DoF workspace: no interference, teeth always engaged,
+and the play in bending and in twist.
+
+Play: from the pose (θ, ψ), gear 2 is turned — about its own axis (twist: the hand turning on
+the forearm) or about the axis through its centre normal to the bending plane (bend, without
+rolling) — until it overlaps gear 1 by the tolerance; the two directions add up to the play. Near
+the pole the contact lies on gear 2's axis and nothing resists a twist: the play is large there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .kit import WristKit
+from ...design import spherical as sph
+from ...geometry import wrist as W
+from ...geometry.measure import intersection
+from ...core.findings import Finding, Result
+from ...core.transforms import turn_about
+
+__all__ = ["check_wrist"]
+
+
+def _play(g1, g2, T, axis, through, tol, limit=math.radians(20)) -> float:
+    total = 0.0
+    for sign in (1, -1):
+        lo, hi = 0.0, limit
+        if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * hi))[0] <= tol:
+            total += hi
+            continue
+        for _ in range(18):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * mid))[0] <= tol else (lo, mid)
+        total += lo
+    return total
+
+
+def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: int = 24, tol: float = 0.01,
+                play_thetas: int = 4, progress=None) -> Result:
+    spec = kit.spec
+    g1, g2 = kit.parts[0].solid, kit.parts[1].solid
+    end = sph.valid_end(spec.I)
+    th_of = lambda b: 2 * np.arctan(np.tan(np.asarray(b) / 2) / spec.I)  # noqa: E731
+    r_of2 = lambda b: sph.pitch_radii(np.clip(th_of(b), 0, end), spec.I, spec.A)[1]  # noqa: E731
+    blank2 = W.revolved_cap(r_of2, math.radians(kit.figures["cap_deg"][1]), -spec.base_height, 8.0, spec.tol)
+    domes = W.domes_union(kit.domes)
+    rng = np.random.default_rng(20260)
+    poses = [(t, p) for t in np.linspace(0, kit.theta_max, grid[0]) for p in 2 * np.pi * np.arange(grid[1]) / grid[1]]
+    poses += [(float(rng.uniform(0, kit.theta_max)), float(rng.uniform(0, 2 * np.pi))) for _ in range(random_poses)]
+    res = Result()
+    worst, weakest = (0.0, None), (math.inf, None)
+    for n, (theta, psi) in enumerate(poses):
+        if progress:
+            progress(n, len(poses))
+        T = kit.pose2(theta, psi)
+        vol, where = intersection(g1, np.eye(4), g2, T)
+        if vol > worst[0]:
+            worst = (vol, (theta, psi, where))
+        engaged = intersection(domes, np.eye(4), blank2, T)[0]
+        if engaged < weakest[0]:
+            weakest = (engaged, (theta, psi))
+    if progress:
+        progress(len(poses), len(poses))
+    if worst[0] > tol:
+        th, ps, where = worst[1]
+        res.add(Finding("interference", "fail", f"gear1 and gear2 overlap by {worst[0]:.3f} mm³ at bend θ = "
+                        f"{math.degrees(th):.1f}°, ψ = {math.degrees(ps):.1f}°", ("gear1", "gear2"), th, worst[0], "mm3",
+                        tuple(where) if where is not None else None))
+    if weakest[0] <= 0:
+        th, ps = weakest[1]
+        res.add(Finding("engagement", "fail", f"no tooth engaged at θ = {math.degrees(th):.1f}°, ψ = "
+                        f"{math.degrees(ps):.1f}°: the wrist would slip", ("gear1", "gear2"), th, 0.0, "mm3"))
+    # play along θ at ψ = 0 (the pair is symmetric in ψ up to the tooth layout)
+    rows = []
+    for theta in np.linspace(0, kit.theta_max, play_thetas):
+        T = kit.pose2(float(theta), 0.0)
+        c2 = T[:3, 3]
+        twist = _play(g1, g2, T, T[:3, 2], c2, tol)  # about gear 2's own axis: the hand's twist
+        bend = _play(g1, g2, T, np.array([0.0, 1.0, 0.0]), c2, tol)
+        rows.append({"theta_deg": round(math.degrees(theta), 3), "twist_play_deg": round(math.degrees(twist), 3),
+                     "bend_play_deg": round(math.degrees(bend), 3)})
+    res.figures.update(poses=len(poses), grid=list(grid), random=random_poses,
+                       max_overlap_mm3=round(worst[0], 6), min_engaged_mm3=round(weakest[0], 4), play=rows,
+                       workspace_bend_deg=round(math.degrees(spec.max_bend), 3),
+                       theta_max_deg=kit.figures["theta_max_deg"])
+    return res

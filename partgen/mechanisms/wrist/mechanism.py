@@ -1,0 +1,178 @@
+"""The wrist gear pair (``kind: wrist``) behind the Mechanism protocol: two spherical gears with
+dome teeth and swept sockets that roll on each other over a bend workspace."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ...config.loader import LoadedDesign, read_yaml
+from ...config.yamlio import dump_yaml
+from ...core.findings import Result
+from ...core.protocol import Motion, Trace
+from ...design import spherical as sph
+from ...design.spherical import RangeError
+from .spec import WristSpec
+from ...errors import DesignError
+from ...geometry.measure import oversize
+from .kit import WristKit, build_wrist, workspace_theta_max
+from .resolve import resolve_wrist
+from .schema import WristDesign
+
+__all__ = ["Wrist", "MECHANISM"]
+
+COLOURS = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b"}
+
+
+class Wrist:
+    kind = "wrist"
+    title = "wrist gear pair"
+    schema = WristDesign
+    motion = Motion("θ on gear 1", "rad", (0.0, math.pi / 2))
+    csv_header = "theta_rad,ratio,phi_rad\n"
+    trace_needs_kit = False
+    role_colours = {"wrist_gear": "#4c78a8"}
+
+    def resolve(self, raw: LoadedDesign) -> WristSpec:
+        spec = resolve_wrist(raw)
+        return spec
+
+    def name(self, spec: WristSpec) -> str:
+        return spec.name
+
+    def build(self, spec: WristSpec, progress=None) -> WristKit:
+        try:
+            kit = build_wrist(spec, progress)
+        except (RangeError, ValueError) as e:
+            raise DesignError(str(e), "wrist") from None
+        return kit
+
+    def refuse(self, spec: WristSpec, kit: WristKit) -> None:
+        for p, ext in oversize(kit.parts, spec.printer.envelope):
+            raise DesignError(f"{p.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                              "wrist.centre_distance_mm")
+
+    def findings(self, spec: WristSpec):
+        return []
+
+    def design_summary(self, spec: WristSpec, kit: WristKit) -> dict:
+        return {"name": spec.name, "kind": self.kind, "nominal_ratio": spec.I,
+                "centre_distance_mm": spec.A, "longitudinal_pitch_mm": spec.long_pitch, **kit.figures}
+
+    def kit_files(self, spec: WristSpec, kit: WristKit, raw: LoadedDesign) -> dict[str, bytes]:
+        data = read_yaml(raw.path)
+        data["printer"] = "printer.yaml"
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+
+    def plate_margin(self, spec: WristSpec) -> float:
+        return 5.0
+
+    def check(self, spec: WristSpec, kit: WristKit, samples: int | None = None, progress=None) -> Result:
+        from .checks import check_wrist
+
+        return check_wrist(kit, progress=progress)
+
+    def trace(self, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
+        """The ratio i(θ) and the mating angle φ(θ) over the valid range, the tooth rows; wrist.png/.svg."""
+        samples = samples or 2000
+        pair = sph.tooth_rows(spec.I, spec.A, spec.long_pitch, spec.ring_teeth)
+        theta_max = workspace_theta_max(spec.I, spec.max_bend)
+        end = sph.valid_end(spec.I)
+        ts, i_ode = sph.ratio_ode(end, spec.I, samples)
+        t = np.linspace(0, end, samples + 1)
+        stats = {"kind": self.kind, "nominal_ratio": spec.I, "valid_end_deg": round(float(np.degrees(end)), 6),
+                 "workspace_theta_max_deg": round(float(np.degrees(theta_max)), 6),
+                 "ode_vs_closed_form_max": float(np.abs(i_ode - sph.ratio(ts, spec.I)).max()),
+                 "mating_angle_methods_max_rad": float(np.abs(sph.mating_angle_meridian(t, spec.I)
+                                                               - sph.mating_angle_latitude(t, spec.I)).max()),
+                 "rows": [{"k": r.k, "teeth": r.teeth, "theta_deg": round(float(np.degrees(r.theta)), 4),
+                           "phi_deg": round(float(np.degrees(r.phi)), 4), "lat_pitch_mm": round(r.lat_pitch_1, 4),
+                           "lat_pitch_off": round(r.lat_pitch_1 / spec.long_pitch - 1, 5) if r.k else None}
+                          for r in pair.rows]}
+        files = []
+        if out is not None:
+            from .plots import wrist_figure
+
+            wrist_figure(spec.I, spec.A, theta_max, pair.rows, out / "wrist.png", out / "wrist.svg",
+                         f"{spec.name}: I = {spec.I:g}, centre distance {spec.A:g} mm")
+            files = ["wrist.png", "wrist.svg"]
+        data = np.column_stack([t, sph.ratio(t, spec.I), sph.mating_angle(t, spec.I)])
+        return Trace(stats, files, columns=("theta_rad", "ratio", "phi_rad"), data=data)
+
+    def csv(self, trace: Trace) -> str:
+        return self.csv_header + "".join(f"{t:.9f},{i:.9f},{p:.9f}\n" for t, i, p in trace.data)
+
+    def bill_text(self, spec: WristSpec, man: dict, dest, seconds: float) -> str:
+        lines = [f"{p['name']:<8}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 {p['mass_g']:7.1f} g  "
+                 f"{' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm" for p in man["parts"]]
+        lines.append(f"wrote {dest}/ in {seconds:.2f} s")
+        return "\n".join(lines)
+
+    def check_text(self, spec: WristSpec, result: Result, folder, seconds: float) -> str:
+        f = result.figures
+        lines = [f"{spec.name}: {f['poses']} poses over the workspace (bend ≤ {f['workspace_bend_deg']:g}°: a "
+                 f"{f['grid'][0]} × {f['grid'][1]} (θ, ψ) grid and {f['random']} random poses)",
+                 f"  largest overlap {f['max_overlap_mm3']:.4f} mm³, least tooth volume engaged "
+                 f"{f['min_engaged_mm3']:.2f} mm³",
+                 f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
+        lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
+        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
+                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
+        return "\n".join(lines)
+
+    def trace_text(self, spec: WristSpec, trace: Trace, folder) -> str:
+        stats = trace.stats
+        lines = [f"{spec.name}: I = {stats['nominal_ratio']:g}; valid range θ ≤ {stats['valid_end_deg']:.3f}° "
+                 f"(φ reaches 90°); workspace θ ≤ {stats['workspace_theta_max_deg']:.3f}°",
+                 f"  ODE vs closed form: {stats['ode_vs_closed_form_max']:.1e}; mating angle, meridian vs latitude: "
+                 f"{stats['mating_angle_methods_max_rad']:.1e} rad"]
+        for r in stats["rows"][1:]:
+            lines.append(f"  ring {r['k']}: {r['teeth']} teeth at θ = {r['theta_deg']:.3f}°, φ = {r['phi_deg']:.3f}°, "
+                         f"latitudinal pitch {r['lat_pitch_mm']:.3f} mm ({100 * r['lat_pitch_off']:+.2f} % off the "
+                         "longitudinal)")
+        if folder:
+            lines.append(f"plots: {folder}/{', '.join(trace.files)}")
+        return "\n".join(lines)
+
+    def report_sections(self, spec: WristSpec, kit: WristKit, result: Result, trace: Trace, files: dict,
+                        common: dict) -> list[tuple[str, str]]:
+        from ...export import report as R
+        from ...export.render import render
+        from ...geometry.solid import mesh_arrays
+
+        stats = trace.stats
+        meshes = {p.name: mesh_arrays(p.solid) for p in kit.parts}
+        T = kit.pose2(kit.theta_max * 0.8, 0.6)
+        v2, f2 = meshes["gear2"]
+        bent = render([(*meshes["gear1"], COLOURS["gear1"]), (v2 @ T[:3, :3].T + T[:3, 3], f2, COLOURS["gear2"])],
+                      (520, 520), elev=12, azim=-30)
+        pics = (f'<div class="grid"><figure>{R.img(bent, "bent")}<figcaption>the pair bent by '
+                f"{math.degrees(0.8 * kit.theta_max + float(sph.mating_angle(0.8 * kit.theta_max, spec.I))):.0f}°"
+                "</figcaption></figure></div>")
+        rows = [[r["k"], r["teeth"], r["theta_deg"], r["phi_deg"], r["lat_pitch_mm"],
+                 "–" if r["lat_pitch_off"] is None else f"{100 * r['lat_pitch_off']:+.2f} %"] for r in stats["rows"]]
+        design = (R.table(["ring", "teeth", "θ on gear 1 °", "φ on gear 2 °", "latitudinal pitch mm", "vs longitudinal"],
+                          rows)
+                  + f"<p>Nominal ratio I = {spec.I:g}, centre distance {spec.A:g} mm, longitudinal pitch "
+                  f"{spec.long_pitch:g} mm, dome teeth r = {spec.dome_radius:g} mm standing {spec.tooth_height:g} mm "
+                  f"proud, sockets cut with {spec.clearance:g} mm clearance over bends ≤ {math.degrees(spec.max_bend):g}°. "
+                  f"The ratio ODE agrees with its closed form tan(φ/2) = I tan(θ/2) to "
+                  f"{stats['ode_vs_closed_form_max']:.1e}; its valid range ends at θ = {stats['valid_end_deg']:.2f}°.</p>")
+        f = result.figures
+        play = [[p["theta_deg"], p["twist_play_deg"], p["bend_play_deg"]] for p in f["play"]]
+        check_html = (f'<p class="{"ok" if result.ok else "fail"}">{f["poses"]} poses: largest overlap '
+                      f'{f["max_overlap_mm3"]:.4f} mm³, least engaged tooth volume {f["min_engaged_mm3"]:.2f} mm³.</p>'
+                      + R.table(["θ on gear 1 °", "twist play °", "bend play °"], play)
+                      + "<p>Twist play is large: domes resist a twist about the line of centres only through the "
+                      "teeth beside the contact, and near the pole the contact tooth sits on that axis.</p>")
+        return [("Design", design), ("Math", R.img(files["wrist.png"], "ratio, mating angle, meridians")),
+                ("Parts", pics), ("Check", check_html)]
+
+    def subtitle(self, spec: WristSpec) -> str:
+        return f"wrist pair, I = {spec.I:g}"
+
+
+MECHANISM = Wrist()

@@ -1,0 +1,58 @@
+"""Figures of a wrist pair like the paper's: the ratio i(θ) and mating angle φ(θ) (closed form vs
+the ODE and both mating rules), and the two pitch meridians in contact (matplotlib, no display)."""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from ...design import spherical as sph  # noqa: E402
+
+__all__ = ["wrist_figure"]
+
+
+def wrist_figure(I: float, A: float, theta_max: float, rows, png, svg=None, title: str = "") -> None:
+    """Three panels: i(θ), φ(θ), and the meridians of both pitch surfaces (straight wrist)."""
+    end = sph.valid_end(I)
+    t = np.linspace(0, end, 400)
+    fig, ax = plt.subplots(1, 3, figsize=(15, 5))
+    ts, i_ode = sph.ratio_ode(end, I, 400)
+    ax[0].plot(np.degrees(t), sph.ratio(t, I), lw=2, label="closed form I / (cos²(θ/2) + I² sin²(θ/2))")
+    ax[0].plot(np.degrees(ts[::20]), i_ode[::20], "o", ms=4, label="the paper's ODE (RK4)")
+    ax[0].axvline(math.degrees(end), color="k", ls=":", label=f"end of the valid range {math.degrees(end):.1f}°")
+    ax[0].axvspan(0, math.degrees(theta_max), color="#4c78a8", alpha=0.08, label="workspace")
+    ax[0].set_xlabel("θ (°) on gear 1")
+    ax[0].set_ylabel("ratio i = r1 / r2")
+    ax[0].legend(fontsize=8)
+    ax[1].plot(np.degrees(t), np.degrees(sph.mating_angle_meridian(t, I)), lw=2, label="φ = ∫ i dθ (meridian arcs)")
+    ax[1].plot(np.degrees(t[::25]), np.degrees(sph.mating_angle_latitude(t[::25], I)), "s", ms=4,
+               label="φ = arcsin(i sin θ) (latitude arcs)")
+    ax[1].plot(np.degrees(t), np.degrees(t), color="#aaa", ls="--", label="φ = θ (I = 1)")
+    for r in rows[1:]:
+        ax[1].plot(math.degrees(r.theta), math.degrees(r.phi), "k^")
+    ax[1].set_xlabel("θ (°) on gear 1")
+    ax[1].set_ylabel("φ (°) on gear 2")
+    ax[1].legend(fontsize=8)
+    r1, r2 = sph.pitch_radii(t, I, A)
+    phi = sph.mating_angle(t, I)
+    for sgn in (1, -1):
+        ax[2].plot(sgn * r1 * np.sin(t), r1 * np.cos(t), color="#4c78a8", lw=2, label="gear 1" if sgn > 0 else None)
+        ax[2].plot(sgn * r2 * np.sin(phi), A - r2 * np.cos(phi), color="#f58518", lw=2, label="gear 2" if sgn > 0 else None)
+    for r in rows:
+        p1 = float(sph.pitch_radii(r.theta, I, A)[0])
+        ax[2].plot([p1 * math.sin(r.theta), -p1 * math.sin(r.theta)], [p1 * math.cos(r.theta)] * 2, "o", color="#4c78a8")
+    ax[2].plot([0, 0], [0, A], "k+", ms=12)
+    ax[2].set_aspect("equal")
+    ax[2].set_xlabel("mm")
+    ax[2].set_title("pitch meridians, wrist straight; dots: tooth rings")
+    fig.suptitle(title or f"I = {I:g}, A = {A:g} mm")
+    fig.tight_layout()
+    fig.savefig(png, dpi=100)
+    if svg is not None:
+        fig.savefig(svg)
+    plt.close(fig)
