@@ -112,3 +112,21 @@ def test_arc_length_angles_follow_the_distance_along_the_curve():
     walked = np.concatenate([[0], np.cumsum(np.abs(np.diff(z)))])
     assert np.allclose(theta, 2 * np.pi * walked / 40.0)
     assert np.allclose(D.crank_angles(z, "samples"), 2 * np.pi * np.arange(len(z)) / len(z))
+
+
+def test_every_chain_is_ordered_so_gears_can_couple_it():
+    # Eq 11: (ω_{j+1} − ω_j)/(ω_{j−1} − ω_j) > 0 for every stage (ω_0 = 0). The heart's four longest
+    # links are M1, M3, L2, M2: three turning backwards, so +/− alternation alone cannot order them.
+    from partgen.design.drivetrain import eq11_ratios
+
+    off, links, d = drawing(heart(scale=9.0), "samples")
+    for n in range(1, len(links) + 1):
+        order = D.drawable_order(links[:n])
+        assert sorted(l.name for l in order) == sorted(l.name for l in links[:n])
+        assert all(r > 0 for r in eq11_ratios([l.speed for l in order]))
+    assert [l.name for l in D.drawable_order(links[:4])][0] in ("L2", "M1", "M3")
+    rng = np.random.default_rng(1)
+    for _ in range(50):
+        speeds = rng.choice([s for s in range(-12, 13) if s], size=rng.integers(1, 12), replace=False)
+        fake = tuple(D.Link(f"x{s}", int(s), float(rng.uniform(1, 9)), 0.0) for s in speeds)
+        assert all(r > 0 for r in eq11_ratios([l.speed for l in D.drawable_order(fake, budget=50)]))

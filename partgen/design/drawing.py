@@ -122,6 +122,57 @@ def fit(z: np.ndarray, parametrisation: str) -> tuple[FourierCurve, complex, tup
     return fc, complex(c[0]), tuple(links), theta
 
 
+def _zigzag(speeds) -> bool:
+    """Every link's speed a strict extreme between its neighbours' (the base's 0 before the first):
+    Eq 11's ratio (ω_{j+1} - ω_j)/(ω_{j-1} - ω_j) is then positive, which an idler train gives."""
+    w = [0, *speeds]
+    return all((w[j + 1] - w[j]) * (w[j - 1] - w[j]) > 0 for j in range(1, len(w) - 1))
+
+
+def drawable_orders(links, limit: int = 24, budget: int = 20_000):
+    """Orders of the links that gears can couple (every Eq 11 ratio positive), the most preferred
+    first: a depth-first search over ``chain_order`` (longest first, +k and -k alternating), at most
+    ``limit`` orders and ``budget`` steps. The pen's path does not depend on the order (a sum of
+    vectors); which gears fit each link does.
+
+    Always yields at least one: 0, max, min, 2nd max, 2nd min, … (min first when every speed is
+    negative) zig-zags.
+    """
+    pref = list(chain_order(links))
+    count, found = [0], []
+
+    def dfs(seq, rest):
+        if not rest:
+            found.append(tuple(seq))
+            return len(found) >= limit
+        for i, l in enumerate(rest):
+            count[0] += 1
+            if count[0] > budget:
+                return True
+            w = [0, *(x.speed for x in seq), l.speed]
+            if len(w) >= 3 and (w[-1] - w[-2]) * (w[-3] - w[-2]) <= 0:
+                continue
+            if dfs(seq + [l], rest[:i] + rest[i + 1:]):
+                return True
+        return False
+
+    if pref:
+        dfs([], pref)
+    if not found:
+        by = sorted(pref, key=lambda l: l.speed)
+        out, hi = [], bool(by) and by[-1].speed > 0
+        while by:
+            out.append(by.pop(-1 if hi else 0))
+            hi = not hi
+        found.append(tuple(out))
+    return found
+
+
+def drawable_order(links, budget: int = 20_000) -> tuple[Link, ...]:
+    """The most preferred of ``drawable_orders``."""
+    return drawable_orders(links, 1, budget)[0]
+
+
 def _point_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Distance of each point p (k,) to the nearest segment a→b (m,), complex mm → (k,)."""
     ab = b - a
@@ -193,7 +244,7 @@ def tradeoff(offset: complex, links: tuple[Link, ...], d: Drawing, max_links: in
     ok = [l for l in links if l.length >= min_link_mm][:max_links]
     rows = []
     for n in range(1, len(ok) + 1):
-        h, mx, rms = measure(Chain(chain_order(ok[:n]), offset), d)
+        h, mx, rms = measure(Chain(tuple(ok[:n]), offset), d)  # the path does not depend on the order
         rows.append(Row(n, h, mx, rms, ok[n - 1].length))
     return tuple(rows)
 
@@ -207,7 +258,7 @@ def choose(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
     meets = [r for r in rows if r.hausdorff_mm <= max_deviation_mm]
     row = meets[0] if meets else None
     n = row.links if row else (min(rows, key=lambda r: r.hausdorff_mm).links if rows else 0)
-    return Choice(Chain(chain_order(ok[:n]), offset), rows, row)
+    return Choice(Chain(drawable_order(ok[:n]), offset), rows, row)
 
 
 @dataclass(frozen=True)
@@ -229,13 +280,18 @@ def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
     ``min_link/ℓ_n ≤ s ≤ B/H(n)``; n runs to ``max_links``. At s = 1, more links: the fewest n ≤
     ``up_to`` with ℓ_n ≥ min_link and H(n) ≤ B.
     """
-    rows = tradeoff(offset, links, d, max(up_to, max_links), 0.0)
+    rows = tradeoff(offset, links, d, max_links, 0.0)
     best = None
-    for r in rows[:max_links]:
+    for r in rows:
         lo, hi = min_link_mm / r.shortest_mm, (max_deviation_mm / r.hausdorff_mm if r.hausdorff_mm > 0 else math.inf)
         if lo <= hi:
             s = min(max(1.0, lo), hi)
             if best is None or abs(math.log(s)) < abs(math.log(best[0])) - 1e-12:
                 best = (s, r.links)
-    more = next((r.links for r in rows if r.shortest_mm >= min_link_mm and r.hausdorff_mm <= max_deviation_mm), None)
+    more = None
+    ok = [l for l in links if l.length >= min_link_mm][:up_to]
+    for n in range(max_links + 1, len(ok) + 1):  # links printable at this size, beyond max_links
+        if measure(Chain(tuple(ok[:n]), offset), d)[0] <= max_deviation_mm:
+            more = n
+            break
     return Rescue(best[0] if best else None, best[1] if best else 0, more)
