@@ -217,10 +217,11 @@ def _sample_subpath(segs) -> np.ndarray | None:
     for s, length in zip(segs, lengths):
         if length <= 0:
             continue
+        k = max(1 if type(s).__name__ in ("Line", "Close") else 4, math.ceil(SVG_SAMPLES * length / total))
         if type(s).__name__ in ("Line", "Close"):
-            pts.append(complex(*s.start))
+            a, b = complex(*s.start), complex(*s.end)
+            pts.extend(a + (b - a) * np.arange(k) / k)
             continue
-        k = max(4, math.ceil(SVG_SAMPLES * length / total))
         xy = np.asarray(s.npoint(np.arange(k) / k), dtype=float)
         pts.extend(xy[:, 0] + 1j * xy[:, 1])
     return np.asarray(pts, dtype=complex)

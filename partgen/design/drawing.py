@@ -129,16 +129,18 @@ def _zigzag(speeds) -> bool:
     return all((w[j + 1] - w[j]) * (w[j - 1] - w[j]) > 0 for j in range(1, len(w) - 1))
 
 
-def drawable_orders(links, limit: int = 24, budget: int = 20_000):
+def drawable_orders(links, limit: int = 24, budget: int = 20_000, first: str | None = None):
     """Orders of the links that gears can couple (every Eq 11 ratio positive), the most preferred
     first: a depth-first search over ``chain_order`` (longest first, +k and -k alternating), at most
     ``limit`` orders and ``budget`` steps. The pen's path does not depend on the order (a sum of
     vectors); which gears fit each link does.
 
     Always yields at least one: 0, max, min, 2nd max, 2nd min, … (min first when every speed is
-    negative) zig-zags.
+    negative) zig-zags. ``first``: the name of the link that must come first (the crank's).
     """
     pref = list(chain_order(links))
+    head = [l for l in pref if l.name == first]
+    pref = [l for l in pref if l.name != first]
     count, found = [0], []
 
     def dfs(seq, rest):
@@ -156,21 +158,22 @@ def drawable_orders(links, limit: int = 24, budget: int = 20_000):
                 return True
         return False
 
-    if pref:
-        dfs([], pref)
-    if not found:
+    if pref or head:
+        dfs(head, pref)
+    if not found and not head:
         by = sorted(pref, key=lambda l: l.speed)
         out, hi = [], bool(by) and by[-1].speed > 0
         while by:
             out.append(by.pop(-1 if hi else 0))
             hi = not hi
         found.append(tuple(out))
-    return found
+    return found  # empty only when ``first`` leaves no zig-zag
 
 
-def drawable_order(links, budget: int = 20_000) -> tuple[Link, ...]:
-    """The most preferred of ``drawable_orders``."""
-    return drawable_orders(links, 1, budget)[0]
+def drawable_order(links, budget: int = 20_000, first: str | None = None) -> tuple[Link, ...] | None:
+    """The most preferred of ``drawable_orders`` (None when ``first`` leaves none)."""
+    got = drawable_orders(links, 1, budget, first)
+    return got[0] if got else None
 
 
 def _point_segments(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -237,28 +240,39 @@ def measure(chain: Chain, d: Drawing, m: int | None = None) -> tuple[float, floa
     return h, float(same.max()), float(np.sqrt(np.mean(same ** 2)))
 
 
+def candidates(links: tuple[Link, ...], min_link_mm: float, lead: str | None = None) -> list[Link]:
+    """The links at least ``min_link_mm`` long, longest first; ``lead`` (a name) first whatever its
+    length, or none at all when it is too short or missing."""
+    ok = [l for l in links if l.length >= min_link_mm]
+    if lead is None:
+        return ok
+    head = [l for l in ok if l.name == lead]
+    return head + [l for l in ok if l.name != lead] if head else []
+
+
 def tradeoff(offset: complex, links: tuple[Link, ...], d: Drawing, max_links: int,
-             min_link_mm: float = 0.0) -> tuple[Row, ...]:
-    """One row per chain of the n longest links at least ``min_link_mm`` long, n = 1..max_links.
-    ``links`` longest first."""
-    ok = [l for l in links if l.length >= min_link_mm][:max_links]
+             min_link_mm: float = 0.0, lead: str | None = None) -> tuple[Row, ...]:
+    """One row per chain of the n longest links at least ``min_link_mm`` long, n = 1..max_links
+    (with ``lead`` always first). ``links`` longest first."""
+    ok = candidates(links, min_link_mm, lead)[:max_links]
     rows = []
     for n in range(1, len(ok) + 1):
         h, mx, rms = measure(Chain(tuple(ok[:n]), offset), d)  # the path does not depend on the order
-        rows.append(Row(n, h, mx, rms, ok[n - 1].length))
+        rows.append(Row(n, h, mx, rms, min(l.length for l in ok[:n])))
     return tuple(rows)
 
 
 def choose(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_mm: float, max_links: int,
-           min_link_mm: float) -> Choice:
+           min_link_mm: float, lead: str | None = None) -> Choice:
     """The fewest printable links (longest first) whose chain lies within ``max_deviation_mm``
     (Hausdorff) of the samples; when none within ``max_links`` does, the best there is."""
-    rows = tradeoff(offset, links, d, max_links, min_link_mm)
-    ok = [l for l in links if l.length >= min_link_mm]
+    rows = tradeoff(offset, links, d, max_links, min_link_mm, lead)
+    ok = candidates(links, min_link_mm, lead)
     meets = [r for r in rows if r.hausdorff_mm <= max_deviation_mm]
     row = meets[0] if meets else None
     n = row.links if row else (min(rows, key=lambda r: r.hausdorff_mm).links if rows else 0)
-    return Choice(Chain(drawable_order(ok[:n]), offset), rows, row)
+    order = drawable_order(ok[:n], first=lead) if n else ()
+    return Choice(Chain(tuple(order or ok[:n]), offset), rows, row)
 
 
 @dataclass(frozen=True)
@@ -272,7 +286,7 @@ class Rescue:
 
 
 def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_mm: float, max_links: int,
-           min_link_mm: float, up_to: int = 64) -> Rescue:
+           min_link_mm: float, up_to: int = 64, lead: str | None = None) -> Rescue:
     """The scale factor closest to 1 (ratio) or the fewest links that would meet the budget.
 
     Scaling the drawing by s scales every link and every deviation by s, so the chain of the n
@@ -280,7 +294,7 @@ def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
     ``min_link/ℓ_n ≤ s ≤ B/H(n)``; n runs to ``max_links``. At s = 1, more links: the fewest n ≤
     ``up_to`` with ℓ_n ≥ min_link and H(n) ≤ B.
     """
-    rows = tradeoff(offset, links, d, max_links, 0.0)
+    rows = tradeoff(offset, links, d, max_links, 0.0, lead)
     best = None
     for r in rows:
         lo, hi = min_link_mm / r.shortest_mm, (max_deviation_mm / r.hausdorff_mm if r.hausdorff_mm > 0 else math.inf)
@@ -289,7 +303,7 @@ def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
             if best is None or abs(math.log(s)) < abs(math.log(best[0])) - 1e-12:
                 best = (s, r.links)
     more = None
-    ok = [l for l in links if l.length >= min_link_mm][:up_to]
+    ok = candidates(links, min_link_mm, lead)[:up_to]
     for n in range(max_links + 1, len(ok) + 1):  # links printable at this size, beyond max_links
         if measure(Chain(tuple(ok[:n]), offset), d)[0] <= max_deviation_mm:
             more = n

@@ -334,11 +334,20 @@ class GearChain:
         stack_html = f'<figure>{R.img(stack_png, "section through the joints")}<figcaption>True section through ' \
                      "the joints, links straightened.</figcaption></figure>"
         stats = trace.stats
-        dev = [["the full Fourier series", stats.get("max_deviation_mm", "–"), stats.get("rms_mm", "–"),
-                stats.get("hausdorff_mm", "–")],
+        dev = [["your drawing" if stats.get("target") == "drawing" else "the full Fourier series",
+                stats.get("max_deviation_mm", "–"), stats.get("rms_mm", "–"), stats.get("hausdorff_mm", "–")],
                ["the design's chain (pruned)", stats["vs_pruned"]["max_deviation_mm"], stats["vs_pruned"]["rms_mm"],
                 stats["vs_pruned"]["hausdorff_mm"]]]
-        trace_html = (R.table(["traced (as built) vs", "max, same θ (mm)", "rms (mm)", "Hausdorff (mm)"], dev)
+        tradeoff = ""
+        if mech.drawing is not None:
+            d = mech.drawing
+            tradeoff = (f"<p>Links against deviation from {html.escape(d.source)} ({len(d.samples)} samples, by "
+                        f"{d.parametrisation.replace('_', ' ')}): the chain of the n longest printable links, its pen "
+                        f"path measured against the samples; {d.chosen} chosen (the fewest within the budget).</p>"
+                        + R.table(["links", "Hausdorff mm", "max, same θ (mm)", "rms (mm)", "shortest link mm"],
+                                  [[r.links, r3(r.hausdorff_mm), r3(r.max_mm), r3(r.rms_mm), r3(r.shortest_mm)]
+                                   for r in d.rows]))
+        trace_html = (R.table(["traced (as built) vs", "max, same θ (mm)", "rms (mm)", "Hausdorff (mm)"], dev) + tradeoff
                       + f'<div class="grid"><figure>{R.img(files["trace.png"], "trace", width=640)}</figure>'
                       + (f'<figure>{R.img(files["trace.gif"], "animation", "image/gif", width=440)}<figcaption>One '
                          "crank turn.</figcaption></figure>" if "trace.gif" in files else "") + "</div>")

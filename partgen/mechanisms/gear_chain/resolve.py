@@ -69,13 +69,22 @@ def _drawn(loaded: LoadedDesign) -> tuple[Chain, drawing.Drawing]:
     where = f"{source}: " if source != "inline" else ""
     z = _closed((xy[:, 0] + 1j * xy[:, 1]) * c.scale, c.close, loaded.path, key)
     _, offset, links, theta = drawing.fit(z, param)
+    first = {l.speed: l.length for l in links if abs(l.speed) == 1}
+    if first.get(-1, 0.0) > first.get(1, 0.0):  # the crank turns link 1 forwards: draw the curve the other way
+        z = np.concatenate([z[:1], z[:0:-1]])
+        _, offset, links, theta = drawing.fit(z, param)
     dr = drawing.Drawing(z, theta, param, source)
     if not links:
         raise ConfigError(loaded.path, key, f"{where}the curve has no rotating part")
+    if not first:
+        raise ConfigError(loaded.path, key, f"{where}the curve has no term turning once per cycle (its speeds are "
+                          f"{', '.join(str(l.speed) for l in links[:6])}, …): the crank turns the first link once "
+                          "per drawing, so partgen draws only curves that go once around (a drawing traced "
+                          "twice, or a Lissajous figure, needs another drive)")
     budget, most, shortest = c.max_deviation_mm, c.max_links, p.min_link_length_mm
-    choice = drawing.choose(offset, links, dr, budget, most, shortest)
+    choice = drawing.choose(offset, links, dr, budget, most, shortest, lead="L1")
     if choice.chosen is None:
-        r = drawing.rescue(offset, links, dr, budget, most, shortest)
+        r = drawing.rescue(offset, links, dr, budget, most, shortest, lead="L1")
         best = min(choice.rows, key=lambda x: x.hausdorff_mm, default=None)
         got = (f"the best, {best.links} links, is {best.hausdorff_mm:.3g} mm away" if best else
                f"its longest link would be {links[0].length:.3g} mm")
@@ -205,12 +214,25 @@ class ChainSpec:
     printer_path: Path
 
 
+def _room(links) -> float:
+    """How easily gears fit an order of links: the smallest link length over the span its stage's two
+    smallest-possible gears need, ``1 + max(r, 1/r)`` gear sizes for Eq 11 ratio r (the last link
+    carries no stage). Larger is easier; the order itself does not change the pen's path."""
+    w = [0, *(l.speed for l in links)]
+    room = math.inf
+    for j in range(1, len(links)):
+        r = abs((w[j + 1] - w[j]) / (w[j - 1] - w[j]))
+        room = min(room, links[j - 1].length / (1 + max(r, 1 / r)))
+    return room
+
+
 def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
     """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key."""
     inputs, params = resolve(loaded)
     orders = [inputs.chain.links]
     if inputs.source == "drawing" and inputs.teeth is None:  # the first order whose gears fit each link
-        orders = drawing.drawable_orders(inputs.chain.links)
+        found = drawing.drawable_orders(inputs.chain.links, limit=200, first=inputs.chain.links[0].name)
+        orders = sorted(found, key=_room, reverse=True)[:24] or orders
     first = None
     for links in orders:
         try:
