@@ -209,3 +209,21 @@ def test_build_and_trace_measure_the_pen_against_the_samples(tmp_path, capsys):
     brute = max(dist.min(axis=0).max(), dist.min(axis=1).max())  # point sets: ≥ the polyline figure
     assert 0.5 < stats["hausdorff_mm"] <= brute + 1e-6 and brute - stats["hausdorff_mm"] < 1.0
     assert stats["hausdorff_mm"] <= 6.0
+
+
+def test_a_curve_without_a_once_per_turn_term_is_refused(tmp_path, capsys):
+    # a 3:2 Lissajous figure is four links (speeds ±2, ±3) but none turns once per crank turn
+    t = 2 * np.pi * np.arange(400) / 400
+    write_csv(tmp_path / "c.csv", 80 * np.sin(3 * t) + 80j * np.sin(2 * t))
+    run_bad(tmp_path, capsys, design(tmp_path, {"points": "c.csv"}), "curve.points", "no term turning once per cycle")
+
+
+def test_a_curve_drawn_clockwise_is_reversed_so_link_1_turns_forwards(tmp_path):
+    z = np.conj(epicycle(small=0.0))  # the mirror image, drawn the other way: M1 100 mm, L2 30 mm
+    write_csv(tmp_path / "c.csv", z)
+    mech = pipeline.load(design(tmp_path, {"points": "c.csv"})).spec.mechanism
+    assert [(l.name, round(l.length, 6)) for l in mech.chain.links] == [("L1", 100.0), ("M2", 30.0)]
+    d = mech.drawing
+    assert d.samples[0] == pytest.approx(z[0]) and d.samples[1] == pytest.approx(z[-1])
+    from partgen.design.drawing import measure
+    assert measure(mech.chain, d)[1] < 1e-6  # the chain passes through every sample at its crank angle
