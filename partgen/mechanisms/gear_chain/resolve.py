@@ -15,6 +15,7 @@ from ...design import drawing
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
 from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, synthesize
+from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_limits
@@ -139,6 +140,22 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
             raise ConfigError(loaded.path, key, f"link {j + 1} ({l.name}) comes out {l.length:.1f} mm long: no plate "
                               f"that long fits the printer's {' × '.join(f'{x:g}' for x in p.build_envelope_mm)} mm "
                               "envelope")
+    if d.curve is None or d.curve.drawn or longest >= p.min_link_length_mm:
+        # a link carries its D and G gears, each at least the printer's smallest gear: a shorter
+        # link cannot hold both, whatever the teeth (the chain's own rules refuse later, on teeth)
+        for j, l in enumerate(chain.links):
+            if l.length < p.min_gear_diameter_mm:
+                if d.curve is not None and d.curve.drawn:
+                    where = f"at curve.scale {d.curve.scale:g} the drawing makes link {j + 1} ({l.name})"
+                    fix, key = "enlarge the drawing (curve.scale)", "curve.scale"
+                elif d.curve is not None:
+                    where = f"at {d.curve.scale_mm_per_unit:g} mm per unit the curve makes link {j + 1} ({l.name})"
+                    fix, key = "drop it (curve.drop_links) or change the curve's terms", "curve"
+                else:
+                    where = f"link {j + 1} ({l.name}) is"
+                    fix, key = f"make it at least {p.min_gear_diameter_mm:g} mm", f"links[{j}].length_mm"
+                raise ConfigError(loaded.path, key, f"{where} {l.length:.3f} mm long, too short to carry two gears "
+                                  f"of the printer's smallest Ø{p.min_gear_diameter_mm:g} mm: {fix}")
     if d.curve is not None and not d.curve.drawn and longest < p.min_link_length_mm:
         need = d.curve.scale_mm_per_unit * p.min_link_length_mm / longest
         raise ConfigError(loaded.path, "curve.scale_mm_per_unit",
@@ -204,6 +221,10 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     return inputs, params
 
 
+TOOTH_KEYS = {"cutter_tip_coeff": "gears.cutter_tip_radius_coeff", "addendum_coeff": "gears.addendum_coeff",
+              "profile_shift": "gears.profile_shift", "dedendum_coeff": "gears.dedendum_coeff"}
+
+
 @dataclass(frozen=True)
 class ChainSpec:
     """A gear chain ready to build: the synthesized mechanism and the kit's parameters."""
@@ -238,6 +259,8 @@ def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
         try:
             mech = synthesize(replace(inputs, chain=Chain(links, inputs.chain.offset)), params)
             break
+        except ToothSystemError as e:  # the design names the tooth system's field; this is its key
+            raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None
         except DesignError as e:
             first = first or e
     else:
