@@ -80,11 +80,22 @@ def test_short_links_are_dropped_and_the_rescue_names_the_scale():
     assert choice.chosen is None
     assert all(l.length >= 3.0 for l in choice.chain.links) and len(choice.chain.links) == 5
     r = D.rescue(off, links, d, 0.05, 12, 3.0)
-    assert r.scale == pytest.approx(3.0 / 2.5) and r.scale_links == 8 and r.links is None
+    assert r.up == pytest.approx(3.0 / 2.5) and r.up_links == 8 and r.links is None
     # the rescue holds: at that scale the budget is met (deviation scales with the drawing)
-    off2, links2, d2 = drawing(heart(scale=5.0 * r.scale), "samples")
+    off2, links2, d2 = drawing(heart(scale=5.0 * r.up), "samples")
     again = D.choose(off2, links2, d2, 0.05 * 1.0, 12, 3.0 - 1e-9)
     assert again.chosen is not None and again.chosen.links == 8
+    # both ways: 100 e^{iθ} + 30 e^{-2iθ} + 5 e^{4iθ} mm, 20 mm smallest link, 4 mm budget: the two long
+    # links miss by the 5 mm term (measured H), so shrinking to 4/H keeps them within budget while
+    # the 30 mm link stays over 20 mm; or enlarging 4× makes the 5 mm link printable (three links)
+    t = 2 * np.pi * np.arange(500) / 500
+    z = 100 * np.exp(1j * t) + 30 * np.exp(-2j * t) + 5 * np.exp(4j * t)
+    off3, links3, d3 = drawing(z, "samples")
+    r3 = D.rescue(off3, links3, d3, 4.0, 3, 20.0)
+    h2 = D.tradeoff(off3, links3, d3, 2)[1].hausdorff_mm
+    assert 3.0 < h2 <= 5.0 + 1e-9
+    assert r3.down == pytest.approx(4.0 / h2) and r3.down_links == 2 and r3.down * 30 >= 20
+    assert r3.up == pytest.approx(4.0) and r3.up_links == 3
     # too few links allowed: the rescue names the count
     r2 = D.rescue(off, links, d, 0.05, 4, 2.0)
     assert r2.links == 8

@@ -277,17 +277,20 @@ def choose(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
 
 @dataclass(frozen=True)
 class Rescue:
-    """What would meet the budget: scale the drawing by ``scale`` (None: no scale does within the
-    links measured) with ``scale_links`` links, or allow ``links`` links at this size (None: none)."""
+    """What would meet the budget: enlarge the drawing by ``up`` (the smallest factor ≥ 1) with
+    ``up_links`` links, shrink it to ``down`` (the largest factor < 1) with ``down_links``, or
+    allow ``links`` links at this size; None where none does (within the links measured)."""
 
-    scale: float | None
-    scale_links: int
+    up: float | None
+    up_links: int
+    down: float | None
+    down_links: int
     links: int | None
 
 
 def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_mm: float, max_links: int,
            min_link_mm: float, up_to: int = 64, lead: str | None = None) -> Rescue:
-    """The scale factor closest to 1 (ratio) or the fewest links that would meet the budget.
+    """The scale factors nearest 1 either way, or the fewest links, that would meet the budget.
 
     Scaling the drawing by s scales every link and every deviation by s, so the chain of the n
     longest links (H(n) at s = 1, shortest link ℓ_n) is printable and within budget B for
@@ -295,17 +298,19 @@ def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
     ``up_to`` with ℓ_n ≥ min_link and H(n) ≤ B.
     """
     rows = tradeoff(offset, links, d, max_links, 0.0, lead)
-    best = None
+    up = down = None
     for r in rows:
         lo, hi = min_link_mm / r.shortest_mm, (max_deviation_mm / r.hausdorff_mm if r.hausdorff_mm > 0 else math.inf)
-        if lo <= hi:
-            s = min(max(1.0, lo), hi)
-            if best is None or abs(math.log(s)) < abs(math.log(best[0])) - 1e-12:
-                best = (s, r.links)
+        if lo > hi:
+            continue
+        if hi >= 1.0 and (up is None or max(1.0, lo) < up[0] - 1e-12):
+            up = (max(1.0, lo), r.links)
+        if lo < 1.0 and (down is None or min(hi, 1.0) > down[0] + 1e-12):
+            down = (min(hi, 1.0), r.links)
     more = None
     ok = candidates(links, min_link_mm, lead)[:up_to]
     for n in range(max_links + 1, len(ok) + 1):  # links printable at this size, beyond max_links
         if measure(Chain(tuple(ok[:n]), offset), d)[0] <= max_deviation_mm:
             more = n
             break
-    return Rescue(best[0] if best else None, best[1] if best else 0, more)
+    return Rescue(up[0] if up else None, up[1] if up else 0, down[0] if down else None, down[1] if down else 0, more)

@@ -90,10 +90,12 @@ def _drawn(loaded: LoadedDesign) -> tuple[Chain, drawing.Drawing]:
         got = (f"the best, {best.links} links, is {best.hausdorff_mm:.3g} mm away" if best else
                f"its longest link would be {links[0].length:.3g} mm")
         fixes = []
-        if r.scale is not None:
-            s = c.scale * r.scale
-            s = (math.ceil(s * 1000) if r.scale >= 1 else math.floor(s * 1000)) / 1000
-            fixes.append(f"curve.scale: {s:g} ({r.scale_links} links; the drawing {r.scale:.3g}× this size)")
+        if r.up is not None:
+            f = math.ceil(c.scale * r.up * 1000) / 1000
+            fixes.append(f"curve.scale: {f:g} ({r.up_links} links; the drawing {r.up:.3g}× this size)")
+        if r.down is not None:
+            f = math.floor(c.scale * r.down * 1000) / 1000
+            fixes.append(f"curve.scale: {f:g} ({r.down_links} links; the drawing {r.down:.3g}× this size)")
         if r.links is not None:
             fixes.append(f"curve.max_links: {r.links}")
         fix = ("; rerun with " + " or ".join(fixes)) if fixes else \
