@@ -227,3 +227,15 @@ def test_a_curve_drawn_clockwise_is_reversed_so_link_1_turns_forwards(tmp_path):
     assert d.samples[0] == pytest.approx(z[0]) and d.samples[1] == pytest.approx(z[-1])
     from partgen.design.drawing import measure
     assert measure(mech.chain, d)[1] < 1e-6  # the chain passes through every sample at its crank angle
+
+
+def test_oversized_file_and_short_inline_list(tmp_path, capsys):
+    from partgen.config.drawing import MAX_FILE_BYTES
+
+    with open(tmp_path / "c.csv", "w") as f:
+        f.write("x_mm,y_mm\n")
+        f.write("1.000000000,2.000000000\n" * (MAX_FILE_BYTES // 24 + 10))
+    run_bad(tmp_path, capsys, design(tmp_path, {"points": "c.csv"}), "curve.points", "MB", "at most")
+    pts = [[float(p.real), float(p.imag)] for p in epicycle(n=10)]
+    run_bad(tmp_path, capsys, design(tmp_path, {"points": pts}, name="inline"), "inline.yaml: curve.points",
+            "10 points", "at least 16")

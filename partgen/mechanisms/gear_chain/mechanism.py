@@ -53,22 +53,18 @@ def drawing_deviation(mech) -> dict:
     """The pen of the chain as built (its teeth's speeds, its links' lengths) against the user's
     samples: at each sample's crank angle (max, RMS) and as curves (Hausdorff), mm."""
     from ...design.drawing import measure
+    from ...design.synthesis import trace
     from ...design.trace import built_chain
 
     d = mech.drawing
-    h, mx, rms = measure(built_chain(mech), d)
-    same = np.abs(trace_pen(built_chain(mech), d.theta) - d.samples)
+    chain = built_chain(mech)
+    h, mx, rms = measure(chain, d)
+    same = np.abs(trace(chain, d.theta) - d.samples)
     return {"target": "drawing", "drawing": d.source, "drawing_samples": int(len(d.samples)),
             "parametrisation": d.parametrisation, "max_deviation_mm": _r6(mx), "rms_mm": _r6(rms),
             "hausdorff_mm": _r6(h), "worst_theta_rad": _r6(d.theta[int(np.argmax(same))]),
             "tradeoff": [{"links": r.links, "hausdorff_mm": _r6(r.hausdorff_mm), "max_deviation_mm": _r6(r.max_mm),
                           "rms_mm": _r6(r.rms_mm), "shortest_link_mm": _r6(r.shortest_mm)} for r in d.rows]}
-
-
-def trace_pen(chain, theta):
-    from ...design.synthesis import trace
-
-    return trace(chain, theta)
 
 
 def tradeoff_text(d) -> list[str]:
