@@ -209,6 +209,11 @@ def test_build_and_trace_measure_the_pen_against_the_samples(tmp_path, capsys):
     brute = max(dist.min(axis=0).max(), dist.min(axis=1).max())  # point sets: ≥ the polyline figure
     assert 0.5 < stats["hausdorff_mm"] <= brute + 1e-6 and brute - stats["hausdorff_mm"] < 1.0
     assert stats["hausdorff_mm"] <= 6.0
+    # the report carries the trade-off: one row per chain measured, the chosen one within budget
+    assert main(["report", str(kit), "-o", str(tmp_path / "report"), "--samples", "36"]) in (0, 1)
+    page = (tmp_path / "report" / "index.html").read_text()
+    assert "Links against deviation from curve.csv (400 samples, by samples)" in page
+    assert "2 chosen" in page and "your drawing" in page
 
 
 def test_a_curve_without_a_once_per_turn_term_is_refused(tmp_path, capsys):
@@ -239,3 +244,18 @@ def test_oversized_file_and_short_inline_list(tmp_path, capsys):
     pts = [[float(p.real), float(p.imag)] for p in epicycle(n=10)]
     run_bad(tmp_path, capsys, design(tmp_path, {"points": pts}, name="inline"), "inline.yaml: curve.points",
             "10 points", "at least 16")
+
+
+def test_parametrisation_is_the_users_choice(tmp_path):
+    # the same CSV, unevenly sampled: by samples θ_i = 2πi/n; by arc length θ follows the distance walked
+    t = 2 * np.pi * np.arange(300) / 300
+    u = t + 0.3 * np.sin(t)  # uneven steps along the curve
+    z = 100 * np.exp(1j * u) + 30 * np.exp(-2j * u)
+    write_csv(tmp_path / "c.csv", z)
+    a = pipeline.load(design(tmp_path, {"points": "c.csv", "max_deviation_mm": 50.0})).spec.mechanism.drawing
+    b = pipeline.load(design(tmp_path, {"points": "c.csv", "max_deviation_mm": 50.0, "parametrisation": "arc_length"},
+                             name="arc")).spec.mechanism.drawing
+    assert a.parametrisation == "samples" and np.allclose(a.theta, t)
+    walked = np.concatenate([[0], np.cumsum(np.abs(np.diff(z)))])
+    perimeter = walked[-1] + abs(z[0] - z[-1])
+    assert b.parametrisation == "arc_length" and np.allclose(b.theta, 2 * np.pi * walked / perimeter)
