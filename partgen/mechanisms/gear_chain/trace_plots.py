@@ -93,6 +93,7 @@ def tradeoff_axes(ax, d) -> None:
         ax.annotate(f"chosen: {d.chosen} links", (d.chosen, ax.get_ylim()[1]), xytext=(5, -15),
                     textcoords="offset points", fontsize=9)
     ax.set_yscale("log")
+    ax.set_xticks(n)
     ax.set_xlabel("links (the longest printable ones)")
     ax.set_ylabel("deviation from the drawing (mm)")
     ax.set_title(f"links vs deviation ({d.parametrisation.replace('_', ' ')})")
