@@ -15,6 +15,7 @@ from . import involute
 from .belt import BeltProfile, BeltStage, design_belt_stage
 from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
+from .drawing import Drawing
 from .drivetrain import Finding, design_finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
@@ -107,8 +108,10 @@ class MechanismInputs:
     scale: float = 1.0
     dropped: tuple[str, ...] = ()
     idlers: tuple[tuple[float, float] | None, ...] | None = None  # hand-placed idlers per stage
-    source: str = "curve"  # "curve": links derived from ``curve``; "table": a design table (curve = its target)
+    source: str = "curve"  # "curve": links derived from ``curve``; "table": a design table (curve = its target);
+    # "drawing": links fitted to ``drawing`` (the user's samples)
     belts: BeltSettings | None = None
+    drawing: Drawing | None = None
 
 
 @dataclass(frozen=True)
@@ -126,6 +129,7 @@ class Mechanism:
     source: str = "curve"
     belt_stages: tuple[BeltStage, ...] = ()
     design_chain: Chain | None = None  # the chain the design asks for (a belt stage may change a link)
+    drawing: Drawing | None = None  # the user's samples the chain was fitted to (source "drawing")
 
     @property
     def couplings(self) -> list[tuple[int, int]]:
@@ -185,7 +189,7 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     _budget([G1, drive] + [g for s in stages for g in (s.D, s.M, s.G)])
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
-                     inputs.chain)
+                     inputs.chain, inputs.drawing)
 
 
 def gear_triangles(gear: GearSpec) -> int:
@@ -303,4 +307,4 @@ def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings
     findings += drive_findings(G1, drive, gear_rules(params)) + kit_findings(params, b)
     chain = Chain(tuple(links), inputs.chain.offset)
     return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
-                     True, inputs.source, tuple(stages), inputs.chain)
+                     True, inputs.source, tuple(stages), inputs.chain, inputs.drawing)

@@ -35,7 +35,7 @@ def size_key(spec: ChainSpec, name: str) -> str:
     mech = spec.mechanism
     if name.startswith("B"):
         j = int(name[1:])
-        return "curve.scale_mm_per_unit" if mech.source == "curve" else f"links[{j - 1}].length_mm"
+        return {"curve": "curve.scale_mm_per_unit", "drawing": "curve.scale"}.get(mech.source, f"links[{j - 1}].length_mm")
     if name in ("G1", "drive"):
         return "drive.teeth"
     if name[0] in "DMG" and name[1:].isdigit():
@@ -47,6 +47,34 @@ def size_key(spec: ChainSpec, name: str) -> str:
 def oversize_parts(spec: ChainSpec, kit: Kit) -> list[tuple[str, str, np.ndarray]]:
     """Parts whose extents (any axis order) exceed the printer envelope: (name, key, extents)."""
     return [(p.name, size_key(spec, p.name), ext) for p, ext in oversize(kit.parts, kit.params.printer.envelope)]
+
+
+def drawing_deviation(mech) -> dict:
+    """The pen of the chain as built (its teeth's speeds, its links' lengths) against the user's
+    samples: at each sample's crank angle (max, RMS) and as curves (Hausdorff), mm."""
+    from ...design.drawing import measure
+    from ...design.synthesis import trace
+    from ...design.trace import built_chain
+
+    d = mech.drawing
+    chain = built_chain(mech)
+    h, mx, rms = measure(chain, d)
+    same = np.abs(trace(chain, d.theta) - d.samples)
+    return {"target": "drawing", "drawing": d.source, "drawing_samples": int(len(d.samples)),
+            "parametrisation": d.parametrisation, "max_deviation_mm": _r6(mx), "rms_mm": _r6(rms),
+            "hausdorff_mm": _r6(h), "worst_theta_rad": _r6(d.theta[int(np.argmax(same))]),
+            "tradeoff": [{"links": r.links, "hausdorff_mm": _r6(r.hausdorff_mm), "max_deviation_mm": _r6(r.max_mm),
+                          "rms_mm": _r6(r.rms_mm), "shortest_link_mm": _r6(r.shortest_mm)} for r in d.rows]}
+
+
+def tradeoff_text(d) -> list[str]:
+    """The links-against-deviation table of a drawing (build prints it)."""
+    lines = [f"links vs deviation from {d.source} ({len(d.samples)} samples, by {d.parametrisation.replace('_', ' ')}):",
+             f"{'links':>7}{'Hausdorff mm':>14}{'max mm':>10}{'rms mm':>10}{'shortest link mm':>18}"]
+    for r in d.rows:
+        lines.append(f"{r.links:>7}{r.hausdorff_mm:>14.3f}{r.max_mm:>10.3f}{r.rms_mm:>10.3f}{r.shortest_mm:>18.2f}"
+                     + ("  <- chosen" if r.links == d.chosen else ""))
+    return lines
 
 
 class GearChain:
@@ -123,7 +151,16 @@ class GearChain:
         printer.yaml beside it."""
         data = read_yaml(raw.path)
         data["printer"] = "printer.yaml"
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+        files = {}
+        c = raw.design.curve
+        if c is not None and c.drawn and (c.svg is not None or isinstance(c.points, str)):
+            from ...config.drawing import curve_file
+
+            key, suffix = ("svg", ".svg") if c.svg is not None else ("points", ".csv")
+            src = curve_file(getattr(c, key), raw.path, f"curve.{key}", suffix)
+            data["curve"] = {**data["curve"], key: f"curve{suffix}"}  # the kit keeps its own copy
+            files[f"curve{suffix}"] = src.read_bytes()
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path)), **files}
 
     def plate_margin(self, spec: ChainSpec) -> float:
         return spec.params.checks.plate_margin
@@ -151,6 +188,8 @@ class GearChain:
         if "full" in targets:
             stats.update(deviation(pen, targets["full"], theta).to_dict())
             stats["pruned_vs_full"] = deviation(targets["pruned"], targets["full"], theta).to_dict()
+        if mech.drawing is not None:
+            stats.update(drawing_deviation(mech))
         files = []
         if out is not None:
             from .trace_plots import trace_animation, trace_figure
@@ -186,6 +225,8 @@ class GearChain:
         for b in man.get("purchased", []):
             lines.append(f"buy: {b['name']} ({b['role']}" + (f", {b['teeth']} teeth" if "teeth" in b else "") + ")")
         warn = sum(f.severity == "warn" for f in mech.findings)
+        if mech.drawing is not None:
+            lines += tradeoff_text(mech.drawing)
         lines.append(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {seconds:.2f} s"
                      + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
         return "\n".join(lines)
@@ -242,7 +283,9 @@ class GearChain:
                  + ("" if stats["closes_after_one_turn"] else " (fractional: the path does not close after one turn)"),
                  f"{'traced vs':<28}{'max (same θ) mm':>16}{'rms mm':>10}{'Hausdorff mm':>14}"]
         rows = [("the design's chain (pruned)", stats["vs_pruned"])]
-        if "max_deviation_mm" in stats:
+        if stats.get("target") == "drawing":
+            rows.insert(0, (f"the drawing ({stats['drawing_samples']} pts)", stats))
+        elif "max_deviation_mm" in stats:
             rows.insert(0, ("the full Fourier series", stats))
             rows.append(("(pruned vs full)", stats["pruned_vs_full"]))
         for label, d in rows:
@@ -287,11 +330,20 @@ class GearChain:
         stack_html = f'<figure>{R.img(stack_png, "section through the joints")}<figcaption>True section through ' \
                      "the joints, links straightened.</figcaption></figure>"
         stats = trace.stats
-        dev = [["the full Fourier series", stats.get("max_deviation_mm", "–"), stats.get("rms_mm", "–"),
-                stats.get("hausdorff_mm", "–")],
+        dev = [["your drawing" if stats.get("target") == "drawing" else "the full Fourier series",
+                stats.get("max_deviation_mm", "–"), stats.get("rms_mm", "–"), stats.get("hausdorff_mm", "–")],
                ["the design's chain (pruned)", stats["vs_pruned"]["max_deviation_mm"], stats["vs_pruned"]["rms_mm"],
                 stats["vs_pruned"]["hausdorff_mm"]]]
-        trace_html = (R.table(["traced (as built) vs", "max, same θ (mm)", "rms (mm)", "Hausdorff (mm)"], dev)
+        tradeoff = ""
+        if mech.drawing is not None:
+            d = mech.drawing
+            tradeoff = (f"<p>Links against deviation from {html.escape(d.source)} ({len(d.samples)} samples, by "
+                        f"{d.parametrisation.replace('_', ' ')}): the chain of the n longest printable links, its pen "
+                        f"path measured against the samples; {d.chosen} chosen (the fewest within the budget).</p>"
+                        + R.table(["links", "Hausdorff mm", "max, same θ (mm)", "rms (mm)", "shortest link mm"],
+                                  [[r.links, r3(r.hausdorff_mm), r3(r.max_mm), r3(r.rms_mm), r3(r.shortest_mm)]
+                                   for r in d.rows]))
+        trace_html = (R.table(["traced (as built) vs", "max, same θ (mm)", "rms (mm)", "Hausdorff (mm)"], dev) + tradeoff
                       + f'<div class="grid"><figure>{R.img(files["trace.png"], "trace", width=640)}</figure>'
                       + (f'<figure>{R.img(files["trace.gif"], "animation", "image/gif", width=440)}<figcaption>One '
                          "crank turn.</figcaption></figure>" if "trace.gif" in files else "") + "</div>")

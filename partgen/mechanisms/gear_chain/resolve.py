@@ -4,10 +4,14 @@ g/cm³ → g/mm³, radial → diametral clearance)."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
+import numpy as np
+
+from ...config.drawing import curve_file, inline_points, read_points_csv, read_svg_path
 from ...design import curve as curves
+from ...design import drawing
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
 from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, synthesize
@@ -23,6 +27,83 @@ def _fourier(c) -> curves.FourierCurve:
     if c.polar is not None:
         return curves.from_polar(c.polar.constant, c.polar.sin, c.polar.cos)
     return curves.from_cartesian(c.cartesian.a, c.cartesian.b, c.cartesian.c, c.cartesian.d)
+
+
+def _closed(z: np.ndarray, close: bool, where: Path, key: str) -> np.ndarray:
+    """The samples of a closed curve: repeated points and a repeated first point dropped; an open
+    curve refused unless ``close`` (then its ends are joined by a straight run of samples)."""
+    if len(z) and np.ptp(z.real) + np.ptp(z.imag) <= 1e-6:
+        raise ConfigError(where, key, "every point is in one place: the curve has no size")
+    z = z[np.append(True, np.abs(np.diff(z)) > 0)]
+    gap, step = drawing.closing(z)
+    if gap <= 1e-9 * (np.ptp(z.real) + np.ptp(z.imag)):
+        z = z[:-1]
+        gap, step = drawing.closing(z)
+    if len(z) < drawing.MIN_SAMPLES:
+        raise ConfigError(where, key, f"{len(z)} distinct points: a closed curve needs at least {drawing.MIN_SAMPLES}")
+    if gap > step * (1 + 1e-6):
+        if not close:
+            raise ConfigError(where, key, f"the curve is open: its last point is {gap:.3g} mm from its first, more than "
+                              f"the largest step between samples ({step:.3g} mm); close it, or set curve.close: true to "
+                              "join the ends with a straight line")
+        k = int(np.ceil(gap / np.median(np.abs(np.diff(z)))))
+        z = np.concatenate([z, z[-1] + (z[0] - z[-1]) * np.arange(1, k) / k])
+    return z
+
+
+def _drawn(loaded: LoadedDesign) -> tuple[Chain, drawing.Drawing]:
+    """The chain of the fewest printable links that draws the design's drawing within its budget."""
+    d, p = loaded.design, loaded.printer
+    c = d.curve
+    if c.svg is not None:
+        key = "curve.svg"
+        f = curve_file(c.svg, loaded.path, key, ".svg")
+        xy, param, source = read_svg_path(f, c.svg_path_id, c.svg_mm_per_unit, loaded.path), "arc_length", f.name
+    elif isinstance(c.points, str):
+        key = "curve.points"
+        f = curve_file(c.points, loaded.path, key, ".csv")
+        xy, param, source = read_points_csv(f), "samples", f.name
+    else:
+        key = "curve.points"
+        xy, param, source = inline_points(c.points, loaded.path), "samples", "inline"
+    param = c.parametrisation or param
+    where = f"{source}: " if source != "inline" else ""
+    z = _closed((xy[:, 0] + 1j * xy[:, 1]) * c.scale, c.close, loaded.path, key)
+    _, offset, links, theta = drawing.fit(z, param)
+    first = {l.speed: l.length for l in links if abs(l.speed) == 1}
+    if first.get(-1, 0.0) > first.get(1, 0.0):  # the crank turns link 1 forwards: draw the curve the other way
+        z = np.concatenate([z[:1], z[:0:-1]])
+        _, offset, links, theta = drawing.fit(z, param)
+    dr = drawing.Drawing(z, theta, param, source)
+    if not links:
+        raise ConfigError(loaded.path, key, f"{where}the curve has no rotating part")
+    if not first:
+        raise ConfigError(loaded.path, key, f"{where}the curve has no term turning once per cycle (its speeds are "
+                          f"{', '.join(str(l.speed) for l in links[:6])}, …): the crank turns the first link once "
+                          "per drawing, so partgen draws only curves that go once around (a drawing traced "
+                          "twice, or a Lissajous figure, needs another drive)")
+    budget, most, shortest = c.max_deviation_mm, c.max_links, p.min_link_length_mm
+    choice = drawing.choose(offset, links, dr, budget, most, shortest, lead="L1")
+    if choice.chosen is None:
+        r = drawing.rescue(offset, links, dr, budget, most, shortest, lead="L1")
+        best = min(choice.rows, key=lambda x: x.hausdorff_mm, default=None)
+        got = (f"the best, {best.links} links, is {best.hausdorff_mm:.3g} mm away" if best else
+               f"its longest link would be {links[0].length:.3g} mm")
+        fixes = []
+        if r.up is not None:
+            f = math.ceil(c.scale * r.up * 1000) / 1000
+            fixes.append(f"curve.scale: {f:g} ({r.up_links} links; the drawing {r.up:.3g}× this size)")
+        if r.down is not None:
+            f = math.floor(c.scale * r.down * 1000) / 1000
+            fixes.append(f"curve.scale: {f:g} ({r.down_links} links; the drawing {r.down:.3g}× this size)")
+        if r.links is not None:
+            fixes.append(f"curve.max_links: {r.links}")
+        fix = ("; rerun with " + " or ".join(fixes)) if fixes else \
+            "; no scale or link count up to 64 does: raise curve.max_deviation_mm"
+        raise ConfigError(loaded.path, "curve.max_deviation_mm",
+                          f"{where}no chain of at most {most} links of at least {shortest:g} mm (the printer's "
+                          f"smallest link) comes within {budget:g} mm of the drawing: {got}{fix}")
+    return choice.chain, replace(dr, rows=choice.rows, chosen=choice.chosen.links)
 
 
 def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]:
@@ -56,23 +137,28 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
     longest = max(l.length for l in chain.links)
     for j, l in enumerate(chain.links):
         if l.length > reach:
-            key = "curve.scale_mm_per_unit" if d.curve is not None else f"links[{j}].length_mm"
+            key = ("curve.scale" if d.curve.drawn else "curve.scale_mm_per_unit") if d.curve is not None \
+                else f"links[{j}].length_mm"
             raise ConfigError(loaded.path, key, f"link {j + 1} ({l.name}) comes out {l.length:.1f} mm long: no plate "
                               f"that long fits the printer's {' × '.join(f'{x:g}' for x in p.build_envelope_mm)} mm "
                               "envelope")
-    if d.curve is None or longest >= p.min_link_length_mm:
+    if d.curve is None or d.curve.drawn or longest >= p.min_link_length_mm:
         # a link carries its D and G gears, each at least the printer's smallest gear: a shorter
         # link cannot hold both, whatever the teeth (the chain's own rules refuse later, on teeth)
         for j, l in enumerate(chain.links):
             if l.length < p.min_gear_diameter_mm:
-                where = (f"at {d.curve.scale_mm_per_unit:g} mm per unit the curve makes link {j + 1} ({l.name})"
-                         if d.curve is not None else f"link {j + 1} ({l.name}) is")
-                fix = ("drop it (curve.drop_links) or change the curve's terms" if d.curve is not None
-                       else f"make it at least {p.min_gear_diameter_mm:g} mm")
-                raise ConfigError(loaded.path, "curve" if d.curve is not None else f"links[{j}].length_mm",
-                                  f"{where} {l.length:.3f} mm long, too short to carry two gears of the printer's "
-                                  f"smallest Ø{p.min_gear_diameter_mm:g} mm: {fix}")
-    if d.curve is not None and longest < p.min_link_length_mm:
+                if d.curve is not None and d.curve.drawn:
+                    where = f"at curve.scale {d.curve.scale:g} the drawing makes link {j + 1} ({l.name})"
+                    fix, key = "enlarge the drawing (curve.scale)", "curve.scale"
+                elif d.curve is not None:
+                    where = f"at {d.curve.scale_mm_per_unit:g} mm per unit the curve makes link {j + 1} ({l.name})"
+                    fix, key = "drop it (curve.drop_links) or change the curve's terms", "curve"
+                else:
+                    where = f"link {j + 1} ({l.name}) is"
+                    fix, key = f"make it at least {p.min_gear_diameter_mm:g} mm", f"links[{j}].length_mm"
+                raise ConfigError(loaded.path, key, f"{where} {l.length:.3f} mm long, too short to carry two gears "
+                                  f"of the printer's smallest Ø{p.min_gear_diameter_mm:g} mm: {fix}")
+    if d.curve is not None and not d.curve.drawn and longest < p.min_link_length_mm:
         need = d.curve.scale_mm_per_unit * p.min_link_length_mm / longest
         raise ConfigError(loaded.path, "curve.scale_mm_per_unit",
                           f"at {d.curve.scale_mm_per_unit:g} mm per unit the longest link is {longest:.3f} mm, under "
@@ -82,7 +168,12 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
 def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     """The mechanism inputs and kit parameters of a loaded design (mm, rad)."""
     d, p = loaded.design, loaded.printer
-    chain, fc, scale, dropped = _chain(loaded)
+    drawn = None
+    if d.curve is not None and d.curve.drawn:
+        chain, drawn = _drawn(loaded)
+        fc, scale, dropped = None, 1.0, ()
+    else:
+        chain, fc, scale, dropped = _chain(loaded)
     _sizes(loaded, chain)
     g = d.gears
     system = ToothSystem(
@@ -104,8 +195,9 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
                                          b.groove_radius_mm, b.back_height_mm, b.width_mm),
                              tuple(b.stock_teeth), b.flange_height_mm, b.flange_thickness_mm, b.tensioner_radius_mm,
                              b.tensioner_gap_mm)
-    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped, idlers,
-                             "curve" if d.curve is not None else "table", belts)
+    source = "drawing" if drawn is not None else ("curve" if d.curve is not None else "table")
+    inputs = MechanismInputs(chain, teeth, g.tip_gap_mm, g.idler_reach_mm, fc, scale, dropped, idlers, source, belts,
+                             drawn)
     j = d.joints
     params = KitParams(
         name=d.name,
@@ -145,18 +237,40 @@ class ChainSpec:
     printer_path: Path
 
 
+def _room(links) -> float:
+    """How easily gears fit an order of links: the smallest link length over the span its stage's two
+    smallest-possible gears need, ``1 + max(r, 1/r)`` gear sizes for Eq 11 ratio r (the last link
+    carries no stage). Larger is easier; the order itself does not change the pen's path."""
+    w = [0, *(l.speed for l in links)]
+    room = math.inf
+    for j in range(1, len(links)):
+        r = abs((w[j + 1] - w[j]) / (w[j - 1] - w[j]))
+        room = min(room, links[j - 1].length / (1 + max(r, 1 / r)))
+    return room
+
+
 def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
     """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key."""
     inputs, params = resolve(loaded)
-    try:
-        mech = synthesize(inputs, params)
-    except ToothSystemError as e:  # the design names the tooth system's field; this is its key
-        raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None
-    except DesignError as e:
-        key = e.key_path
-        if inputs.source == "curve" and key.startswith("links"):  # a curve design has no link table
+    orders = [inputs.chain.links]
+    if inputs.source == "drawing" and inputs.teeth is None:  # the first order whose gears fit each link
+        found = drawing.drawable_orders(inputs.chain.links, limit=200, first=inputs.chain.links[0].name)
+        orders = sorted(found, key=_room, reverse=True)[:24] or orders
+    first = None
+    for links in orders:
+        try:
+            mech = synthesize(replace(inputs, chain=Chain(links, inputs.chain.offset)), params)
+            break
+        except ToothSystemError as e:  # the design names the tooth system's field; this is its key
+            raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None
+        except DesignError as e:
+            first = first or e
+    else:
+        key = first.key_path
+        if inputs.source in ("curve", "drawing") and key.startswith("links"):  # a curve design has no link table
             key = "curve"
-        raise ConfigError(loaded.path, key, e.problem) from None
+        problem = first.problem + (f" (tried {len(orders)} orders of the links)" if len(orders) > 1 else "")
+        raise ConfigError(loaded.path, key, problem) from None
     return ChainSpec(loaded.path, mech, params, loaded.printer_path)
 
 

@@ -35,16 +35,58 @@ class Cartesian(Strict):
         return self
 
 
+Point = Annotated[list[Finite], Field(min_length=2, max_length=2)]
+FileName = Annotated[str, Field(min_length=1, max_length=500)]
+
+
 class Curve(Strict):
+    """The curve the chain draws: Fourier coefficients (``polar``, ``cartesian``) at
+    ``scale_mm_per_unit``, or a drawing (``points``: a CSV file or an inline list of [x, y] mm;
+    ``svg``: a path of an SVG file) from which partgen picks the fewest links within
+    ``max_deviation_mm``."""
+
     polar: Polar | None = None
     cartesian: Cartesian | None = None
-    scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)]
+    points: FileName | Annotated[list[Point], Field(max_length=100_000)] | None = None
+    svg: FileName | None = None
+    svg_path_id: Annotated[str, Field(min_length=1, max_length=200)] | None = None
+    svg_mm_per_unit: Annotated[float, Field(gt=0, le=MAX)] | None = None
+    parametrisation: Literal["samples", "arc_length"] | None = None
+    close: bool = False
+    max_deviation_mm: Annotated[float, Field(ge=0.001, le=MAX)] = 1.0
+    max_links: Annotated[int, Field(ge=1, le=64)] = 16
+    scale: Ratio = 1.0
+    scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)] | None = None
     drop_links: Annotated[list[Annotated[str, Field(max_length=40)]], Field(max_length=200)] = []
+
+    @property
+    def drawn(self) -> bool:
+        return self.points is not None or self.svg is not None
 
     @model_validator(mode="after")
     def _one_form(self):
-        if (self.polar is None) == (self.cartesian is None):
-            raise ValueError("give exactly one of 'polar' or 'cartesian'")
+        given = [k for k in ("polar", "cartesian", "points", "svg") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of 'polar', 'cartesian', 'points' or 'svg'"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        drawing_keys = ("parametrisation", "svg_path_id", "svg_mm_per_unit")
+        if self.drawn:
+            if self.scale_mm_per_unit is not None:
+                raise ValueError("'scale_mm_per_unit' is for Fourier coefficients; a drawing is in mm "
+                                 "(use 'scale' to enlarge or shrink it)")
+            if self.drop_links:
+                raise ValueError("'drop_links' is for Fourier coefficients; for a drawing partgen picks the links "
+                                 "(set 'max_deviation_mm' and 'max_links')")
+            if self.points is not None and (self.svg_path_id is not None or self.svg_mm_per_unit is not None):
+                raise ValueError("'svg_path_id' and 'svg_mm_per_unit' go with 'svg', not 'points'")
+        else:
+            if self.scale_mm_per_unit is None:
+                raise ValueError("'scale_mm_per_unit' is required with 'polar' or 'cartesian'")
+            extra = [k for k in drawing_keys if getattr(self, k) is not None]
+            extra += [k for k in ("close",) if self.close] + [k for k in ("scale",) if self.scale != 1.0]
+            extra += [k for k in ("max_deviation_mm", "max_links") if k in self.model_fields_set]
+            if extra:
+                raise ValueError(f"{', '.join(extra)} go with a drawing ('points' or 'svg'), not Fourier coefficients")
         return self
 
 

@@ -37,7 +37,14 @@ def trace_figure(mech: Mechanism, stats: dict, png, svg=None, title: str = "") -
     """Target (full series), the design's chain and the chain as built, links drawn at a few
     crank angles, arrows for the pen's direction, and which way is up."""
     theta, paths, built, pen = _curves(mech)
-    fig, ax = plt.subplots(figsize=(9, 9))
+    dr = mech.drawing
+    if dr is not None:
+        fig, (ax, ax2) = plt.subplots(1, 2, figsize=(15, 8.5), gridspec_kw={"width_ratios": [1.25, 1]})
+        tradeoff_axes(ax2, dr)
+        z = np.append(dr.samples, dr.samples[0])
+        ax.plot(z.real, z.imag, color="#999", lw=3.5, alpha=0.6, label=f"target: your drawing ({dr.source})")
+    else:
+        fig, ax = plt.subplots(figsize=(9, 9))
     if "full" in paths:
         ax.plot(paths["full"].real, paths["full"].imag, color="#999", lw=3.5, alpha=0.6, label="target: full Fourier series")
     ax.plot(paths["pruned"].real, paths["pruned"].imag, color="#4c78a8", lw=1.8, label="target: the design's links (pruned)")
@@ -52,7 +59,11 @@ def trace_figure(mech: Mechanism, stats: dict, png, svg=None, title: str = "") -
     ax.quiver(pen.real[::step], pen.imag[::step], d.real, d.imag, angles="xy", scale_units="xy", scale=1,
               color="#e45756", width=0.003, alpha=0.9)
     ax.plot([mech.chain.offset.real], [mech.chain.offset.imag], "k^", ms=9, label="ground pivot")
-    if "max_deviation_mm" in stats and "full" in paths:
+    if "max_deviation_mm" in stats and dr is not None:
+        k = int(np.argmin(np.abs(dr.theta - stats["worst_theta_rad"])))
+        ax.annotate(f"largest deviation (same θ) {stats['max_deviation_mm']:.1f} mm", (dr.samples[k].real, dr.samples[k].imag),
+                    xytext=(20, 20), textcoords="offset points", arrowprops={"arrowstyle": "->"})
+    elif "max_deviation_mm" in stats and "full" in paths:
         k = int(np.argmin(np.abs(theta - stats["worst_theta_rad"])))
         ax.annotate(f"largest deviation {stats['max_deviation_mm']:.1f} mm", (paths["full"][k].real, paths["full"][k].imag),
                     xytext=(20, 20), textcoords="offset points", arrowprops={"arrowstyle": "->"})
@@ -71,11 +82,30 @@ def trace_figure(mech: Mechanism, stats: dict, png, svg=None, title: str = "") -
     plt.close(fig)
 
 
+def tradeoff_axes(ax, d) -> None:
+    """Links against the measured deviation of their chain from the drawing; the chosen count marked."""
+    n = [r.links for r in d.rows]
+    ax.plot(n, [r.hausdorff_mm for r in d.rows], "-o", color="#e45756", label="Hausdorff (curve to curve)")
+    ax.plot(n, [r.max_mm for r in d.rows], "--s", color="#4c78a8", ms=4, label="max at the same crank angle")
+    ax.plot(n, [r.rms_mm for r in d.rows], ":^", color="#54a24b", ms=4, label="RMS at the same crank angle")
+    if d.chosen:
+        ax.axvline(d.chosen, color="#333", lw=1, ls="--")
+        ax.annotate(f"chosen: {d.chosen} links", (d.chosen, ax.get_ylim()[1]), xytext=(5, -15),
+                    textcoords="offset points", fontsize=9)
+    ax.set_yscale("log")
+    ax.set_xticks(n)
+    ax.set_xlabel("links (the longest printable ones)")
+    ax.set_ylabel("deviation from the drawing (mm)")
+    ax.set_title(f"links vs deviation ({d.parametrisation.replace('_', ' ')})")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+
+
 def trace_animation(mech: Mechanism, gif, frames: int = 90, fps: int = 15) -> None:
     """The chain (as built) turning through one cycle, the pen leaving its path behind."""
     theta, paths, built, pen = _curves(mech, 2000)
     fig, ax = plt.subplots(figsize=(5.5, 5.5), dpi=80)
-    target = paths.get("full", paths["pruned"])
+    target = paths.get("full", paths["pruned"]) if mech.drawing is None else mech.drawing.samples
     ax.plot(target.real, target.imag, color="#bbb", lw=2)
     drawn, = ax.plot([], [], color="#e45756", lw=1.3)
     arm, = ax.plot([], [], "-o", color="#4c78a8", lw=1.5, ms=3)
