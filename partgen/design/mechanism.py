@@ -246,6 +246,12 @@ def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[F
     add(wall_breach(wall, pr.min_wall), "plates.boss_wall_mm",
         f"the plates' and the crank's walls around their D-holes; use boss_wall_mm ≥ "
         f"{pr.min_wall + params.boss_wall - wall:.2f}")
+    if jn.running_clearance / 2 < HOLE_EXCESS:
+        # a turning pin's facets sweep past its bore's: under the facets' depth they can meet
+        out.append(design_finding("warn", "fit", f"running clearance {jn.running_clearance / 2:.3f} mm radial is under "
+                                  f"the {HOLE_EXCESS:g} mm the round features' facets may stand proud: a turning joint "
+                                  "can bind on its facets (the check measures it); use at least "
+                                  f"{HOLE_EXCESS:g} mm radial ({2 * HOLE_EXCESS:g} mm diametral)", "joints"))
     if belts is not None:
         wall = belts.tensioner_radius - params.bore / 2 - HOLE_EXCESS
         add(wall_breach(wall, pr.min_wall), "belts.tensioner_radius_mm",
