@@ -50,10 +50,13 @@ def kit_copy(kit_of, tmp_path):
 
 @pytest.fixture
 def prime_kit_cache():
-    """``prime_kit_cache(built)``: make ``built.kit`` the kit pipeline.make_kit hands out for its design (check, trace and report
-    share one built kit per process; this lets a test's command reuse the session's build)."""
-    def prime(built: pipeline.Built) -> None:
-        loaded = built.loaded
+    """``prime_kit_cache(built, target=None)``: make ``built.kit`` the kit pipeline.make_kit hands out
+    for ``target`` (a config or kit folder of the same design; default the config it was built from).
+    check, trace and report share one built kit per process; this lets a test's command reuse the
+    session's build. A kit folder's STLs are still compared byte for byte with that kit's."""
+    def prime(built: pipeline.Built, target=None) -> None:
+        loaded = built.loaded if target is None else pipeline.load(target)
+        assert loaded.spec.__class__ is built.loaded.spec.__class__
         key = (loaded.mechanism.kind, loaded.path.read_bytes(), loaded.raw.printer_path.read_bytes())
         pipeline._KITS.clear()
         pipeline._KITS[key] = built.kit
