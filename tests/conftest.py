@@ -50,14 +50,19 @@ def kit_copy(kit_of, tmp_path):
 
 @pytest.fixture
 def prime_kit_cache():
-    """``prime_kit_cache(built, target=None)``: make ``built.kit`` the kit pipeline.make_kit hands out
-    for ``target`` (a config or kit folder of the same design; default the config it was built from).
-    check, trace and report share one built kit per process; this lets a test's command reuse the
-    session's build. A kit folder's STLs are still compared byte for byte with that kit's."""
-    def prime(built: pipeline.Built, target=None) -> None:
+    """``prime_kit_cache(built, target=None)``: make ``built.kit`` (or ``built`` itself, a kit built
+    from the config ``target``) the kit pipeline.make_kit hands out
+    for ``target`` (default: the config it was built from; give only a file with the same bytes).
+    check, trace and report share one built kit per process; this lets a test's command on a config
+    reuse the session's build of that same config. Don't prime a kit folder: its check must rebuild
+    from the folder's own design.yaml to test that it reproduces the STLs."""
+    def prime(built, target=None) -> None:
+        kit = built.kit if isinstance(built, pipeline.Built) else built
         loaded = built.loaded if target is None else pipeline.load(target)
-        assert loaded.spec.__class__ is built.loaded.spec.__class__
+        if isinstance(built, pipeline.Built):
+            assert loaded.path.read_bytes() == built.loaded.path.read_bytes(), "not the design it was built from"
+        assert loaded.kit_dir is None, "a kit folder's check must rebuild from its own design.yaml"
         key = (loaded.mechanism.kind, loaded.path.read_bytes(), loaded.raw.printer_path.read_bytes())
         pipeline._KITS.clear()
-        pipeline._KITS[key] = built.kit
+        pipeline._KITS[key] = kit
     return prime
