@@ -1,5 +1,6 @@
 """Shared fixtures: each kit is built once per test session."""
 
+import shutil
 from pathlib import Path
 
 import pytest
@@ -11,20 +12,57 @@ CONFIGS = ROOT / "configs"
 
 
 @pytest.fixture(scope="session")
-def built_kits(tmp_path_factory):
+def built_kits(kit_of):
     """name -> (Loaded, Kit, manifest dict, kit folder) for the two butterfly designs."""
-    out = {}
-    for name in ("butterfly", "butterfly_liu2017"):
-        dest = tmp_path_factory.mktemp("kits") / name
-        out[name] = pipeline.build(CONFIGS / f"{name}.yaml", dest)
-    return out
+    return {name: kit_of(name) for name in ("butterfly", "butterfly_liu2017")}
 
 
 @pytest.fixture(scope="session")
-def shipped_kits(tmp_path_factory):
+def shipped_kits(kit_of):
     """name -> (Loaded, Kit, manifest dict, kit folder) for every shipped config (configs/*.yaml)."""
-    out = {}
-    for cfg in sorted(CONFIGS.glob("*.yaml")):
-        dest = tmp_path_factory.mktemp("shipped") / cfg.stem
-        out[cfg.stem] = pipeline.build(cfg, dest)
-    return out
+    return {cfg.stem: kit_of(cfg.stem) for cfg in sorted(CONFIGS.glob("*.yaml"))}
+
+
+@pytest.fixture(scope="session")
+def kit_of(tmp_path_factory):
+    """``kit_of(name)`` -> Built (loaded, kit, manifest, dest) of configs/<name>.yaml, built in-process
+    once per test session (per xdist worker) on first use. The folder is shared: read it, never
+    write into it (use ``kit_copy`` for a folder a test may change)."""
+    cache = {}
+
+    def get(name: str) -> pipeline.Built:
+        if name not in cache:
+            cache[name] = pipeline.build(CONFIGS / f"{name}.yaml", tmp_path_factory.mktemp("kit_of") / name)
+        return cache[name]
+    return get
+
+
+@pytest.fixture
+def kit_copy(kit_of, tmp_path):
+    """``kit_copy(name)`` -> a fresh copy (Path) of the session's built kit folder of configs/<name>.yaml,
+    the test's own to change."""
+    def copy(name: str, dest: Path | None = None) -> Path:
+        dest = dest or tmp_path / f"{name}_kit"
+        shutil.copytree(kit_of(name).dest, dest)
+        return dest
+    return copy
+
+
+@pytest.fixture
+def prime_kit_cache():
+    """``prime_kit_cache(built, target=None)``: make ``built.kit`` (or ``built`` itself, a kit built
+    from the config ``target``) the kit pipeline.make_kit hands out
+    for ``target`` (default: the config it was built from; give only a file with the same bytes).
+    check, trace and report share one built kit per process; this lets a test's command on a config
+    reuse the session's build of that same config. Don't prime a kit folder: its check must rebuild
+    from the folder's own design.yaml to test that it reproduces the STLs."""
+    def prime(built, target=None) -> None:
+        kit = built.kit if isinstance(built, pipeline.Built) else built
+        loaded = built.loaded if target is None else pipeline.load(target)
+        if isinstance(built, pipeline.Built):
+            assert loaded.path.read_bytes() == built.loaded.path.read_bytes(), "not the design it was built from"
+        assert loaded.kit_dir is None, "a kit folder's check must rebuild from its own design.yaml"
+        key = (loaded.mechanism.kind, loaded.path.read_bytes(), loaded.raw.printer_path.read_bytes())
+        pipeline._KITS.clear()
+        pipeline._KITS[key] = kit
+    return prime

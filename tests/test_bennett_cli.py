@@ -21,10 +21,18 @@ FIXED = ROOT / "tests" / "designs" / "bennett_fixed.yaml"
 
 
 @pytest.fixture(scope="module")
-def kit_dir(tmp_path_factory):
+def built_fixed(tmp_path_factory):
+    """(kit folder, kit) of `partgen build FIXED`: the kit is the one build made (make_kit's)."""
+    from partgen import pipeline
     out = tmp_path_factory.mktemp("bennett") / "kit"
     assert main(["build", str(FIXED), "-o", str(out), "-q"]) == 0
-    return out
+    (kit,) = pipeline._KITS.values()
+    return out, kit
+
+
+@pytest.fixture(scope="module")
+def kit_dir(built_fixed):
+    return built_fixed[0]
 
 
 def test_kit_folder(kit_dir):
@@ -125,7 +133,8 @@ def test_a_heavier_link_fails_the_check(capsys):
     assert fails and all(f["check"] == "balance" for f in fails)
 
 
-def test_report_page(tmp_path):
+def test_report_page(tmp_path, built_fixed, prime_kit_cache):
+    prime_kit_cache(built_fixed[1], FIXED)  # the report's kit is the one `build` made of the same FIXED
     assert main(["report", str(FIXED), "-o", str(tmp_path / "rep")]) == 0
     page = (tmp_path / "rep" / "index.html").read_text()
     for words in ("Poses", "Balance", "Interference", "Base", "Bill of parts", "Bought parts", "link12", "support mm²",

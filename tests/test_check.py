@@ -27,9 +27,9 @@ def fails(result, check=None):
 
 
 @pytest.fixture(scope="module")
-def default_kit():
-    L = chain_load(ROOT / "configs" / "butterfly.yaml")
-    return build_kit(L.mechanism, L.params)
+def default_kit(kit_of):
+    """The default design's kit as `partgen build` made it this session (the same build_kit call)."""
+    return kit_of("butterfly").kit
 
 
 def test_default_design_passes_with_no_false_positives(default_kit):
@@ -144,7 +144,8 @@ def test_meshing_pair_overlaps_zero_and_nudged_it_overlaps(default_kit):
         assert hit and max(r["worst_overlap_mm3"] for r in hit) > 0.001
 
 
-def test_check_cli_json_and_exit_codes(tmp_path, capsys):
+def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache):
+    prime_kit_cache(kit_of("butterfly"))  # check's kit is the session's build (make_kit shares one per process)
     code = main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "24", "--json", "--plates",
                  str(tmp_path / "plates")])
     out = json.loads(capsys.readouterr().out)
@@ -158,10 +159,9 @@ def test_check_cli_json_and_exit_codes(tmp_path, capsys):
     assert main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "2"]) == 2
 
 
-def test_check_a_built_kit_folder_and_notice_tampering(tmp_path, capsys):
-    kit = tmp_path / "kit"
-    assert main(["build", str(ROOT / "configs" / "butterfly.yaml"), "-o", str(kit), "-q"]) == 0
-    capsys.readouterr()
+def test_check_a_built_kit_folder_and_notice_tampering(capsys, kit_copy):
+    kit = kit_copy("butterfly")  # a fresh copy of the session's `partgen build` of it, ours to tamper with
+    # (not primed: check rebuilds the kit from the folder's own design.yaml and compares its STLs)
     assert main(["check", str(kit), "--samples", "12", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["ok"] is True
     assert (kit / "plates" / "plate1.3mf").is_file()

@@ -49,9 +49,10 @@ def user_folder(tmp_path: Path, name: str = "mine") -> Path:
 
 
 @pytest.fixture(scope="module")
-def kit(tmp_path_factory) -> Path:
+def kit(tmp_path_factory, kit_of) -> Path:
+    """A copy of the session's build of the default design (this module's own)."""
     dest = tmp_path_factory.mktemp("k") / "kit"
-    assert main(["build", str(DEFAULT), "-o", str(dest), "-q"]) == 0
+    shutil.copytree(kit_of("butterfly").dest, dest)
     return dest
 
 

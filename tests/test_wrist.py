@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 import trimesh
 
-from partgen import pipeline
 from partgen.mechanisms.wrist.kit import build_wrist
 from partgen.mechanisms import load_design
 from partgen.mechanisms.wrist.resolve import resolve_wrist
@@ -23,21 +22,22 @@ CONFIGS = ["wrist_sphere", "wrist_quasi_ellipsoid"]
 
 
 @pytest.fixture(scope="module", params=CONFIGS)
-def built(request, tmp_path_factory):
-    cfg = ROOT / "configs" / f"{request.param}.yaml"
-    spec = resolve_wrist(load_design(cfg))
-    return spec, build_wrist(spec)
+def built(request, kit_of):
+    """(spec, kit) of each wrist config, from the session's `partgen build` of it."""
+    b = kit_of(request.param)
+    assert b.loaded.spec == resolve_wrist(load_design(ROOT / "configs" / f"{request.param}.yaml"))
+    return b.loaded.spec, b.kit
 
 
-def test_wrist_kits_build_watertight_and_fit(tmp_path):
-    for name in CONFIGS:
-        loaded, kit, man, folder = pipeline.build(ROOT / "configs" / f"{name}.yaml", tmp_path / name)
-        expected = ["gear1", "gear2"] + (["cross_gear"] if name == "wrist_sphere" else [])
-        assert [p["name"] for p in man["parts"]] == expected
-        for p in man["parts"]:
-            mesh = trimesh.load(folder / p["file"], file_type="stl", force="mesh")
-            assert mesh_problems(mesh, kit.params.printer.envelope) == []
-            assert p["volume_mm3"] == pytest.approx(mesh.volume, rel=1e-6)
+@pytest.mark.parametrize("name", CONFIGS)
+def test_wrist_kits_build_watertight_and_fit(name, kit_of):
+    loaded, kit, man, folder = kit_of(name)
+    expected = ["gear1", "gear2"] + (["cross_gear"] if name == "wrist_sphere" else [])
+    assert [p["name"] for p in man["parts"]] == expected
+    for p in man["parts"]:
+        mesh = trimesh.load(folder / p["file"], file_type="stl", force="mesh")
+        assert mesh_problems(mesh, kit.params.printer.envelope) == []
+        assert p["volume_mm3"] == pytest.approx(mesh.volume, rel=1e-6)
 
 
 def _blank(spec, kit, gear):
@@ -146,7 +146,7 @@ def test_wrist_trace_reports_the_math_and_draws_it(tmp_path, capsys):
     assert Image.open(tmp_path / "wrist.png").size[0] > 1000
 
 
-def test_cross_gear_keeps_its_profile_through_both_ring_axes(tmp_path):
+def test_cross_gear_keeps_its_profile_through_both_ring_axes(kit_of):
     """The ABENICS-style cross gear of wrist_sphere: section the printed mesh just above its
     equatorial base (the plane through both ring axes) and compare with the 2-D involute profile."""
     import shapely
@@ -154,7 +154,7 @@ def test_cross_gear_keeps_its_profile_through_both_ring_axes(tmp_path):
 
     from partgen.geometry.gear import gear_outline
     from partgen.testing import section_outline
-    _, kit, man, folder = pipeline.build(ROOT / "configs" / "wrist_sphere.yaml", tmp_path / "k")
+    _, kit, man, folder = kit_of("wrist_sphere")
     entry = next(p for p in man["parts"] if p["name"] == "cross_gear")
     mesh = trimesh.load(folder / entry["file"], file_type="stl", force="mesh")
     assert mesh_problems(mesh) == []
@@ -192,10 +192,11 @@ def test_cross_gear_bad_teeth_is_a_config_error(tmp_path, capsys):
     assert not (tmp_path / "out").exists()
 
 
-def test_wrist_report_page(tmp_path):
+def test_wrist_report_page(tmp_path, kit_of, prime_kit_cache):
     import re
 
     from partgen.cli.main import main
+    prime_kit_cache(kit_of("wrist_quasi_ellipsoid"))  # the report builds nothing anew: the session's kit
     assert main(["report", str(ROOT / "configs" / "wrist_quasi_ellipsoid.yaml"), "-o", str(tmp_path)]) == 0
     text = (tmp_path / "index.html").read_text()
     for heading in ("Design", "Math", "Parts", "Check"):
