@@ -252,7 +252,7 @@ def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[F
 
 def gear_rules(params: KitParams) -> GearRules:
     """The gear and mesh rules of a kit: its check settings on its printer."""
-    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.resolution)
+    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.line_width)
 
 
 def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Finding]:

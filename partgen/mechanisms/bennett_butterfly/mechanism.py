@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, read_yaml
+from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.protocol import Motion, Trace
 from ...design.bennett_butterfly import BennettParams
@@ -274,10 +274,10 @@ class BennettButterfly:
 
     def kit_files(self, spec: BennettParams, kit: A.BennettKit, raw: LoadedDesign) -> dict[str, bytes]:
         """design.yaml with the chosen layout pinned (a kit folder rebuilds without a search), printer.yaml."""
-        data = read_yaml(raw.path)
+        data = raw.document()
         data["printer"] = "printer.yaml"
         data.setdefault("parts", {})["layout"] = layout_yaml(kit)
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
 
     def plate_margin(self, spec: BennettParams) -> float:
         return 5.0

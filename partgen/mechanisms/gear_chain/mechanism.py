@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, read_yaml
+from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Result
 from ...core.protocol import Motion, Trace
@@ -121,9 +121,9 @@ class GearChain:
     def kit_files(self, spec: ChainSpec, kit: Kit, raw: LoadedDesign) -> dict[str, bytes]:
         """The design and its printer profile, as a kit folder keeps them: design.yaml names
         printer.yaml beside it."""
-        data = read_yaml(raw.path)
+        data = raw.document()
         data["printer"] = "printer.yaml"
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
 
     def plate_margin(self, spec: ChainSpec) -> float:
         return spec.params.checks.plate_margin

@@ -66,6 +66,20 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
                           f"the printer's smallest link ({p.min_link_length_mm:g} mm): use at least {need:.3g} mm per unit")
 
 
+def _fit(loaded: LoadedDesign, kind: str) -> float:
+    """A joint clearance (diametral, mm): as given, or ``printer``: the fit the printer's profile measured."""
+    j, p = loaded.design.joints, loaded.printer
+    value = j.running_diametral if kind == "running" else j.press_fit_diametral
+    if value != "printer":
+        return float(value)
+    measured = None if p.fits is None else getattr(p.fits, f"{kind}_clearance_diametral_mm")
+    if measured is None:
+        raise ConfigError(loaded.path, f"joints.{kind}_clearance_diametral_mm",
+                          f"'printer' takes the fit from the printer profile, but {p.name!r} ({loaded.printer_path.name}) "
+                          f"gives no fits.{kind}_clearance_diametral_mm: give a number (mm, diametral)")
+    return float(measured)
+
+
 def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     """The mechanism inputs and kit parameters of a loaded design (mm, rad)."""
     d, p = loaded.design, loaded.printer
@@ -101,7 +115,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
         plate_thickness=d.plates.thickness_mm,
         boss_wall=d.plates.boss_wall_mm,
         hub_wall=g.hub_wall_mm,
-        joints=Joints(j.axle_diameter_mm, j.running_diametral, j.press_fit_diametral, j.axial_gap_mm),
+        joints=Joints(j.axle_diameter_mm, _fit(loaded, "running"), _fit(loaded, "press_fit"), j.axial_gap_mm),
         base_thickness=d.base.thickness_mm,
         leg_height=d.base.leg_height_mm,
         crank_radius=d.base.crank_radius_mm,

@@ -113,9 +113,10 @@ class Plates(Strict):
 class Joints(Strict):
     axle_diameter_mm: Length
     running_clearance_radial_mm: Finite | None = None
-    running_clearance_diametral_mm: Finite | None = None
+    # ``printer``: the fit the printer profile's maker measured (its fits.*_diametral_mm)
+    running_clearance_diametral_mm: Finite | Literal["printer"] | None = None
     press_fit_clearance_radial_mm: Finite | None = None
-    press_fit_clearance_diametral_mm: Finite | None = None
+    press_fit_clearance_diametral_mm: Finite | Literal["printer"] | None = None
     axial_gap_mm: Length = 0.5
 
     @model_validator(mode="after")
