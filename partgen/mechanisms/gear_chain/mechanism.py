@@ -123,6 +123,8 @@ class GearChain:
         printer.yaml beside it."""
         data = raw.document()
         data["printer"] = "printer.yaml"
+        if isinstance(data.get("gears"), dict) and data["gears"].get("module_mm") == "auto":
+            data["gears"]["module_mm"] = spec.params.system.module  # the module auto chose, pinned
         return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
 
     def plate_margin(self, spec: ChainSpec) -> float:

@@ -10,7 +10,7 @@ from pathlib import Path
 from ...design import curve as curves
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
-from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, synthesize
+from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, auto_module, synthesize
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_limits
@@ -87,7 +87,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     _sizes(loaded, chain)
     g = d.gears
     system = ToothSystem(
-        module=g.module_mm,
+        module=1.0 if g.module_mm == "auto" else g.module_mm,  # auto: chosen in resolve_spec
         pressure_angle=math.radians(g.pressure_angle_deg),
         addendum_coeff=g.addendum_coeff,
         dedendum_coeff=g.dedendum_coeff,
@@ -146,7 +146,10 @@ def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
     """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key."""
     inputs, params = resolve(loaded)
     try:
-        mech = synthesize(inputs, params)
+        if loaded.design.gears.module_mm == "auto":
+            mech, params = auto_module(inputs, params)
+        else:
+            mech = synthesize(inputs, params)
     except DesignError as e:
         key = e.key_path
         if inputs.source == "curve" and key.startswith("links"):  # a curve design has no link table

@@ -86,7 +86,7 @@ class StageTeeth(Strict):
 
 
 class Gears(Strict):
-    module_mm: Length
+    module_mm: Length | Literal["auto"]  # auto: the largest module that builds and prints on the printer
     pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     addendum_coeff: Annotated[float, Field(gt=0, le=2)] = 1.0
     dedendum_coeff: Annotated[float, Field(gt=0, le=2.5)] = 1.25
