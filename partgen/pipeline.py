@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from .config.loader import LoadedDesign
-from .config.overrides import Overrides
+from .config.overrides import Overrides, parse_set
 from .config.yamlio import dump_yaml
 from .core.findings import Finding, Result
 from .core.protocol import Kit, Mechanism, Trace
@@ -22,7 +22,7 @@ from .export.kit import atomic_dir, group_parts, printed, write_kit
 from .export.outputs import claim_output
 from .mechanisms import REGISTRY, load_design
 
-__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report"]
+__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
 
 
 @dataclass(frozen=True)
@@ -61,6 +61,12 @@ class Traced(NamedTuple):
     loaded: Loaded
     trace: Trace
     plots_dir: Path | None
+
+
+def overrides(sets=(), printer: str | None = None) -> Overrides:
+    """The command line's changes to a design: ``--set KEY=VALUE`` texts and ``--printer NAME|FILE``
+    (a malformed --set raises the usage error)."""
+    return Overrides(tuple(parse_set(t) for t in sets), printer)
 
 
 def _raw(target, over: Overrides | None = None) -> tuple[LoadedDesign, Path | None]:

@@ -59,6 +59,6 @@ def add_design_options(p: argparse.ArgumentParser) -> None:
 def overrides(args):
     """The command line's overrides of the design (``config.overrides.Overrides``); a malformed
     --set raises the usage error."""
-    from ..config.overrides import Overrides, parse_set
+    from ..pipeline import overrides as make
 
-    return Overrides(tuple(parse_set(t) for t in getattr(args, "sets", []) or []), getattr(args, "printer", None))
+    return make(getattr(args, "sets", []) or [], getattr(args, "printer", None))
