@@ -219,7 +219,7 @@ def kit_gear_specs(manifest: dict, system: ToothSystem) -> list[GearSpec]:
 
 
 def bench_kit_gears(manifest: dict, repeats: int, hole_segments: int) -> dict:
-    from partgen.pipeline import load
+    from partgen.mechanisms.gear_chain.resolve import load
 
     system = load(ROOT / DEFAULT_KIT).params.system  # the kit's exact tooth system (untimed)
     specs = kit_gear_specs(manifest, system)

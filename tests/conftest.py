@@ -18,3 +18,13 @@ def built_kits(tmp_path_factory):
         dest = tmp_path_factory.mktemp("kits") / name
         out[name] = pipeline.build(CONFIGS / f"{name}.yaml", dest)
     return out
+
+
+@pytest.fixture(scope="session")
+def shipped_kits(tmp_path_factory):
+    """name -> (Loaded, Kit, manifest dict, kit folder) for every shipped config (configs/*.yaml)."""
+    out = {}
+    for cfg in sorted(CONFIGS.glob("*.yaml")):
+        dest = tmp_path_factory.mktemp("shipped") / cfg.stem
+        out[cfg.stem] = pipeline.build(cfg, dest)
+    return out

@@ -12,7 +12,7 @@ from partgen.design.drivetrain import Limits, choose_stage, eq11_ratios, idler_c
 from partgen.design.gearing import ToothSystem, make_gear
 from partgen.design.kinematics import gear_poses, mesh_phase_error
 from partgen.errors import DesignError
-from partgen.pipeline import load
+from partgen.mechanisms.gear_chain.resolve import load
 
 ROOT = Path(__file__).parent.parent
 TABLE3 = yaml.safe_load((Path(__file__).parent / "data" / "liu2017_table3_manufacturing.yaml").read_text())

@@ -84,3 +84,22 @@ def test_trace_cli_csv_json_and_plots(tmp_path, capsys):
     assert (tmp_path / "plots" / "trace.svg").read_text().lstrip().startswith("<?xml")
     gif = Image.open(tmp_path / "plots" / "trace.gif")
     assert gif.n_frames > 30
+
+
+def test_hausdorff_by_blocks_equals_brute_force():
+    """The block-pruned nearest distances (design.trace.nearest_distances) against every pair, on
+    scattered points and on curves that pass close to themselves (where pruning is tempted)."""
+    from partgen.design.trace import nearest_distances
+    rng = np.random.default_rng(7)
+    for trial in range(24):
+        n, m = (int(x) for x in rng.integers(1, 2500, 2))
+        if trial % 2:
+            a = rng.normal(size=n) + 1j * rng.normal(size=n)
+            b = 2 * rng.normal(size=m) + 1j * rng.normal(size=m)
+        else:
+            t, u = np.linspace(0, 2 * np.pi, n, endpoint=False), np.linspace(0, 2 * np.pi, m, endpoint=False)
+            a = np.exp(1j * t) * (1 + 0.4 * np.sin(int(rng.integers(1, 9)) * t))
+            b = np.exp(1j * u) * (1 + 0.4 * np.cos(3 * u)) + 0.01 * rng.normal()
+        brute = np.abs(a[:, None] - b[None, :]).min(axis=1)
+        assert np.array_equal(nearest_distances(a, b), brute)
+        assert hausdorff(a, b) == max(brute.max(), np.abs(b[:, None] - a[None, :]).min(axis=1).max())

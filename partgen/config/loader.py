@@ -88,7 +88,7 @@ def _describe(err: dict, data: Any, errors: list[dict]) -> tuple[str, str]:
         hint = f"; did you mean '{close[0]}'?" if close else " (not part of the schema; check its spelling)"
         return path, "unknown key" + hint
     got = err.get("input")
-    if not isinstance(got, (dict, list)):
+    if not isinstance(got, (dict, list)) and ", got " not in msg:
         msg += f", got {got!r}"
     return path, msg
 
@@ -142,7 +142,7 @@ def printer_path(value: str, design: Path, key: str = "printer", folders=()) -> 
     roots = [base, PRINTERS_DIR, *(Path(f).resolve() for f in folders)]
     if not any(path == r or r in path.parents for r in roots):
         raise ConfigError(design, key, f"{value!r} lies outside the design's folder: a design reads only a shipped "
-                          "printer (by name) or a profile in its own folder (or give --printer FILE)")
+                          "printer (by name) or a profile in its own folder: copy the profile beside the design")
     if not path.is_file():
         raise ConfigError(design, key, f"no printer profile at {value!r} (looked for {path})")
     return path

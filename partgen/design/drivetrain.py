@@ -18,7 +18,7 @@ from typing import Sequence
 from ..core.findings import Finding
 from ..errors import DesignError
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from .rules import Breach, GearRules, check_generable, gear_breaches, mesh_breaches
+from .rules import Breach, GearRules, ToothSystemError, check_generable, gear_breaches, mesh_breaches
 
 __all__ = [
     "Limits", "Stage", "Finding", "eq11_ratios", "idler_centre", "make_stage",
@@ -180,8 +180,8 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
     if rules is not None:  # a rack that cannot generate a gear (fillets that overlap) is the design's error
         try:
             check_generable(make_gear(zmin, system))
-        except DesignError as e:
-            if e.key_path != "gears.profile_shift":  # a pointed tooth is one gear's: tip-width
+        except ToothSystemError as e:
+            if e.field != "profile_shift":  # a pointed tooth is one gear's: tip-width
                 raise
     best, best_key, turned = None, None, Counter()
     for td, tg in ratio_multiples(ratio, zmin):

@@ -46,6 +46,15 @@ __all__ = [
     "gear_outline",
 ]
 
+
+class OutlineError(ValueError):
+    """The rack cannot generate this outline; ``field`` names the ``ToothSystem`` field to change
+    ("cutter_tip_coeff", "addendum_coeff", "profile_shift")."""
+
+    def __init__(self, problem: str, field: str):
+        super().__init__(problem)
+        self.field = field
+
 _MAX_CHORD = 0.5  # mm, longest chord of any sampled curve
 _DENSE = 1024  # dense evaluations per curve piece for the adaptive sampler
 _SAFETY = 0.9  # sampler aims at this fraction of the chord tolerance
@@ -426,7 +435,7 @@ def gear_outline(z, m, alpha, x=0.0, thinning=0.0, ha=1.0, hf=1.25, rho=0.38, to
     hf = _positive(hf, "hf")
     rho = _finite(rho, "rho")
     if rho < 0.0:
-        raise ValueError(f"rho must be >= 0, got {rho!r}")
+        raise OutlineError(f"rho must be >= 0, got {rho!r}", "cutter_tip_coeff")
     tol = _positive(tol, "tol")
 
     rp, w_c, u_c, rf, c = _cutter(z, m, alpha, x, thinning, hf, rho)
@@ -434,19 +443,21 @@ def gear_outline(z, m, alpha, x=0.0, thinning=0.0, ha=1.0, hf=1.25, rho=0.38, to
     ra = tip_diameter(z, m, x, ha) / 2.0
     rr = root_diameter(z, m, x, hf) / 2.0
     if c - u_c < -1e-12 * m:
-        raise ValueError(
+        raise OutlineError(
             f"rho = {rho!r} is too large for hf = {hf!r}, alpha and thinning = {thinning!r}: "
-            f"the cutter's tip fillets overlap (at most {max_tip_fillet_coeff(alpha, hf, thinning / m):.4f})")
+            f"the cutter's tip fillets overlap (at most {max_tip_fillet_coeff(alpha, hf, thinning / m):.4f})",
+            "cutter_tip_coeff")
     u_c = min(u_c, c)
     s = reference_tooth_thickness(z, m, alpha, x, thinning)
     psi_b = s / (2.0 * rp) + inv(alpha)  # half angle of the tooth at the base circle
     if ra <= rb:
-        raise ValueError(f"ha = {ha!r} with x = {x!r}: tip radius {ra!r} mm is not above the base radius")
+        raise OutlineError(f"ha = {ha!r} with x = {x!r}: tip radius {ra!r} mm is not above the base radius",
+                           "addendum_coeff")
     psi_a = psi_b - float(_inv_at_radius(ra, rb))
     if psi_a <= 0.0:
-        raise ValueError(
+        raise OutlineError(
             f"pointed tooth: tip thickness {2 * ra * psi_a:.6g} mm <= 0 "
-            f"(reduce ha = {ha!r}, x = {x!r} or thinning = {thinning!r})")
+            f"(reduce ha = {ha!r}, x = {x!r} or thinning = {thinning!r})", "profile_shift")
 
     sa = math.sin(alpha)
     w_t = w_c - rf * sa  # where the cutter's straight flank meets its fillet

@@ -28,7 +28,7 @@ from ..errors import DesignError
 from . import involute
 from .gearing import GearSpec
 
-__all__ = ["TIP_ROOT_COEFF", "CODES", "GearRules", "Breach", "check_generable", "tip_root_clearance", "contact_ratio", "form_radius",
+__all__ = ["TIP_ROOT_COEFF", "CODES", "GearRules", "Breach", "check_generable", "ToothSystemError", "tip_root_clearance", "contact_ratio", "form_radius",
            "mate_contact_radius", "mesh_breaches", "gear_breaches", "hole_breach", "wall_breach"]
 
 TIP_ROOT_COEFF = 0.05  # × module: the least clearance between a tip and its mate's root
@@ -76,23 +76,31 @@ def contact_ratio(g1: GearSpec, g2: GearSpec, a: float) -> float:
 
 
 @lru_cache(maxsize=4096)
-def _coarse_outline(g: GearSpec) -> involute.GearOutline | str:
+def _coarse_outline(g: GearSpec) -> involute.GearOutline | involute.OutlineError | ValueError:
     s = g.system
     try:
         return involute.gear_outline(g.teeth, s.module, s.pressure_angle, g.profile_shift, s.backlash_per_gear,
                                      s.addendum_coeff, s.dedendum_coeff, s.cutter_tip_coeff, tol=0.05)
     except ValueError as e:
-        return str(e)
+        return e
+
+
+class ToothSystemError(DesignError):
+    """A gear the tooth system cannot make; ``field``: the ``ToothSystem`` field to change ("" if none)."""
+
+    def __init__(self, problem: str, field: str = ""):
+        super().__init__(problem)
+        self.field = field
 
 
 def check_generable(gear: GearSpec) -> None:
-    """Raise DesignError (naming the config key) if the rack cannot generate this gear: cutter tip
-    fillets that overlap, a tip inside the base circle, a pointed tooth."""
+    """Raise ``ToothSystemError`` (naming the ``ToothSystem`` field, which the mechanism's resolver
+    maps to its config key) if the rack cannot generate this gear: cutter tip fillets that overlap,
+    a tip inside the base circle, a pointed tooth."""
     out = _coarse_outline(gear)
-    if isinstance(out, str):
-        key = ("gears.cutter_tip_radius_coeff" if out.startswith("rho") else
-               "gears.profile_shift" if "pointed" in out else "gears.addendum_coeff" if out.startswith("ha") else "gears")
-        raise DesignError(f"a {gear.teeth}-tooth gear (x = {gear.profile_shift:.4g}) cannot be generated: {out}", key)
+    if isinstance(out, ValueError):
+        raise ToothSystemError(f"a {gear.teeth}-tooth gear (x = {gear.profile_shift:.4g}) cannot be generated: {out}",
+                               getattr(out, "field", ""))
 
 
 def form_radius(g: GearSpec) -> float:

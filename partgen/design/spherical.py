@@ -26,7 +26,7 @@ import numpy as np
 
 from ..core.transforms import rot_axis
 
-__all__ = ["WristSpec", "WristPair", "valid_end", "ratio", "ratio_ode", "mating_angle_meridian", "mating_angle_latitude",
+__all__ = ["WristPair", "valid_end", "ratio", "ratio_ode", "mating_angle_meridian", "mating_angle_latitude",
            "pitch_radii", "gear2_pose", "meridian_arc", "tooth_rows", "RangeError"]
 
 
@@ -203,28 +203,3 @@ def tooth_rows(I: float, A: float, long_pitch: float, ring_teeth=(1, 6, 12)) -> 
         lat2 = 2 * math.pi * float(r2) * math.sin(ph) / n if k else 0.0
         rows.append(Row(k, n, th, ph, lat1, lat2))
     return WristPair(I, A, tuple(rows), long_pitch)
-
-
-@dataclass(frozen=True)
-class WristSpec:
-    """A wrist pair's design numbers (mm, rad)."""
-
-    name: str
-    I: float
-    A: float
-    long_pitch: float
-    ring_teeth: tuple[int, ...]
-    dome_radius: float
-    tooth_height: float
-    clearance: float
-    max_bend: float
-    theta_steps: int
-    psi_steps: int
-    shaft_diameter: float
-    press_clearance: float
-    base_height: float
-    tol: float
-    density: float
-    material: str
-    printer: object  # PrinterLimits
-    cross: object = None  # GearSpec of an ABENICS-style cross gear on the spherical pitch, or None

@@ -71,9 +71,17 @@ def _gear_entry(part: Part) -> dict:
 
 
 def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
-    """The manifest of a kit: {"design": ..., "parts": [...]}; placements at crank angle 0."""
+    """The manifest of a kit: {"design": ..., "parts": [...]}; placements at rest (motion parameter 0).
+    Per part: its mass printed solid (``mass_g``) and as printed (``printed_mass_g``: the kit's own
+    print model, e.g. infill, or solid), and the centre of mass of its STL (``centre_of_mass_mm``, in
+    the STL's frame, solid). See docs/manifest.schema.json."""
     poses = kit.poses(0.0)
     density = kit.density
+    model = getattr(kit, "printed_mass", None)  # a kit that models its print (infill) says what a part weighs
+
+    def printed_mass(name: str, solid_g: float) -> float:
+        got = model(name) if model else None
+        return solid_g if got is None else got
     parts = []
     for grp in groups:
         first = grp[0]
@@ -87,6 +95,8 @@ def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
             "triangles": int(len(m.faces)),
             "volume_mm3": _r(m.volume, 4),
             "mass_g": _r(m.volume * density, 4),
+            "printed_mass_g": _r(printed_mass(first.part.name, m.volume * density), 4),
+            "centre_of_mass_mm": [_r(c, 4) for c in m.center_mass],
             "bbox_mm": [_r(x, 4) for x in m.extents],
             "print_flip": first.part.print_flip,
             "placement": [[[_r(x, 9) for x in row] for row in poses[it.part.name] @ it.local_from_print] for it in grp],

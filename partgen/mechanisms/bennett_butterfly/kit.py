@@ -21,7 +21,7 @@ import numpy as np
 
 from ...core.transforms import frame_z
 from ...design import bennett_butterfly as bbf
-from ...design.bennett_butterfly import BennettParams
+from .params import BennettParams
 from ...geometry.bennett_link import Cup, base_solid, link_solid, pin_solid
 from ...geometry.mass import printed_mass
 from ...geometry.parts import Part
@@ -108,6 +108,14 @@ class BennettKit:
     @property
     def material(self) -> str:
         return self.params.material
+
+    def printed_mass(self, name: str) -> float | None:
+        """Grams of a printed part as printed (the FDM shell-and-infill model)."""
+        if name == "base":
+            return self.base_mass.fdm_mass
+        if name.startswith("link") and name[4:].isdigit():
+            return self.masses[int(name[4:])].fdm_mass
+        return None
 
     @property
     def pockets(self) -> dict[int, tuple[np.ndarray, Fill]]:

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...design import bennett_butterfly as bbf
-from ...design.bennett_butterfly import BennettParams
+from .params import BennettParams
 from ...geometry.bennett_link import capsules
 from ...geometry.capsules import segment_distance
 from .parts import (BASE, Layout, base_features, default_layout, guess_fill, home_inputs, link_features,

@@ -12,7 +12,7 @@ import numpy as np
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.protocol import Motion, Trace
-from ...design.bennett_butterfly import BennettParams
+from .params import BennettParams
 from ...errors import DesignError
 from . import kit as A
 from .parts import home_inputs
@@ -286,7 +286,14 @@ class BennettButterfly:
         """Balance over the input grid, interference over the workspace, stacks, pins, printing, the base."""
         from .checks import check_bennett
 
-        return check_bennett(kit)
+        steps = 7  # the named steps check_bennett announces
+        done = [0]
+
+        def say(step: str) -> None:
+            done[0] += 1
+            if progress:
+                progress(min(done[0], steps), steps)
+        return check_bennett(kit, say)
 
     def trace(self, spec: BennettParams, kit: A.BennettKit, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:

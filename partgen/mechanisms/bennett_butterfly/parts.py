@@ -18,7 +18,7 @@ import numpy as np
 
 from ...design import bennett_butterfly as bbf
 from ...design.balanced import LINKS
-from ...design.bennett_butterfly import BennettParams
+from .params import BennettParams
 from ...errors import DesignError
 from ...geometry.bennett_link import Bar, Boss, Column, Cup
 from ...geometry.mass import PrintSettings

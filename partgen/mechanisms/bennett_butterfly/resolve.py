@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import math
 
-from ...design.bennett_butterfly import BennettButterfly, BennettParams
+from ...design.bennett_butterfly import BennettButterfly
+from .params import BennettParams
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, printer_limits
 

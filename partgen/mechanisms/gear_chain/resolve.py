@@ -10,7 +10,9 @@ from pathlib import Path
 from ...design import curve as curves
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
-from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, auto_module, synthesize
+from ...design.mechanism import (BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, auto_module,
+                                 synthesize)
+from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_limits
@@ -59,6 +61,18 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
             raise ConfigError(loaded.path, key, f"link {j + 1} ({l.name}) comes out {l.length:.1f} mm long: no plate "
                               f"that long fits the printer's {' × '.join(f'{x:g}' for x in p.build_envelope_mm)} mm "
                               "envelope")
+    if d.curve is None or longest >= p.min_link_length_mm:
+        # a link carries its D and G gears, each at least the printer's smallest gear: a shorter
+        # link cannot hold both, whatever the teeth (the chain's own rules refuse later, on teeth)
+        for j, l in enumerate(chain.links):
+            if l.length < p.min_gear_diameter_mm:
+                where = (f"at {d.curve.scale_mm_per_unit:g} mm per unit the curve makes link {j + 1} ({l.name})"
+                         if d.curve is not None else f"link {j + 1} ({l.name}) is")
+                fix = ("drop it (curve.drop_links) or change the curve's terms" if d.curve is not None
+                       else f"make it at least {p.min_gear_diameter_mm:g} mm")
+                raise ConfigError(loaded.path, "curve" if d.curve is not None else f"links[{j}].length_mm",
+                                  f"{where} {l.length:.3f} mm long, too short to carry two gears of the printer's "
+                                  f"smallest Ø{p.min_gear_diameter_mm:g} mm: {fix}")
     if d.curve is not None and longest < p.min_link_length_mm:
         need = d.curve.scale_mm_per_unit * p.min_link_length_mm / longest
         raise ConfigError(loaded.path, "curve.scale_mm_per_unit",
@@ -132,6 +146,10 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     return inputs, params
 
 
+TOOTH_KEYS = {"cutter_tip_coeff": "gears.cutter_tip_radius_coeff", "addendum_coeff": "gears.addendum_coeff",
+              "profile_shift": "gears.profile_shift", "dedendum_coeff": "gears.dedendum_coeff"}
+
+
 @dataclass(frozen=True)
 class ChainSpec:
     """A gear chain ready to build: the synthesized mechanism and the kit's parameters."""
@@ -150,6 +168,8 @@ def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
             mech, params = auto_module(inputs, params)
         else:
             mech = synthesize(inputs, params)
+    except ToothSystemError as e:  # the design names the tooth system's field; this is its key
+        raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None
     except DesignError as e:
         key = e.key_path
         if inputs.source == "curve" and key.startswith("links"):  # a curve design has no link table

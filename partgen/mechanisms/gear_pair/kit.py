@@ -13,6 +13,7 @@ from ...core.parts import Part
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose_z
 from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
+from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, base_plate, bored_gear, shaft
@@ -59,6 +60,12 @@ def resolve_pair(loaded: LoadedDesign) -> PairSpec:
                          profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
                          chord_tolerance=g.chord_tolerance_mm)
     g1, g2 = (make_gear(z, system) for z in g.teeth)
+    for i, gear in enumerate((g1, g2)):
+        try:
+            check_generable(gear)
+        except ToothSystemError as e:
+            raise ConfigError(loaded.path, "gears.profile_shift" if e.field == "profile_shift" else f"gears.teeth[{i}]",
+                              e.problem) from None
     bore = d.axles.diameter_mm / 2 + d.axles.clearance_diametral_mm / 2
     for i, gear in enumerate((g1, g2)):
         if bore + p.min_wall >= gear.root_radius:

@@ -10,7 +10,7 @@ import numpy as np
 from shapely.geometry import box
 
 from ...design import spherical as sph
-from ...design.spherical import WristSpec
+from .spec import WristSpec
 from ...geometry import wrist as W
 
 from ...geometry.parts import DFit, Part

@@ -13,7 +13,8 @@ from ...config.yamlio import dump_yaml
 from ...core.findings import Result
 from ...core.protocol import Motion, Trace
 from ...design import spherical as sph
-from ...design.spherical import RangeError, WristSpec
+from ...design.spherical import RangeError
+from .spec import WristSpec
 from ...errors import DesignError
 from ...geometry.measure import oversize
 from .kit import WristKit, build_wrist, workspace_theta_max
@@ -32,7 +33,7 @@ class Wrist:
     motion = Motion("θ on gear 1", "rad", (0.0, math.pi / 2))
     csv_header = "theta_rad,ratio,phi_rad\n"
     trace_needs_kit = False
-    role_colours = {"gear": "#4c78a8"}
+    role_colours = {"wrist_gear": "#4c78a8"}
 
     def resolve(self, raw: LoadedDesign) -> WristSpec:
         spec = resolve_wrist(raw)

@@ -7,7 +7,7 @@ import math
 from ...design.gearing import ToothSystem, make_gear
 from ...design.involute import max_tip_fillet_coeff
 from ...errors import ConfigError
-from ...design.spherical import WristSpec
+from .spec import WristSpec
 from ...config.loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve_wrist"]
@@ -24,6 +24,21 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
                           f"{w.centre_distance_mm:g} mm makes a pitch radius of {r_min:.2f} mm at the pole, too small for "
                           f"the {w.shaft_diameter_mm:g} mm shaft, a 3 mm wall and a {w.tooth.radius_mm:g} mm tooth: use "
                           f"at least {w.centre_distance_mm * need / r_min:.1f} mm")
+    # a dome tooth is the cap of a ball standing height_mm proud of the pitch surface: it must be
+    # rooted in the surface on a footprint the printer can lay down (diameter 2·sqrt(h(2r − h)))
+    r, h, wall = w.tooth.radius_mm, w.tooth.height_mm, p.min_wall_mm
+    key = "wrist.tooth.radius_mm" if r < wall / 2 else "wrist.tooth.height_mm"  # blame the absurd one
+    if h >= 2 * r:
+        raise ConfigError(loaded.path, key, f"a dome of radius {r:g} mm cannot stand {h:g} mm proud (its diameter is "
+                          f"{2 * r:g} mm): the ball would float above the surface; keep height_mm under 2 × radius_mm")
+    foot = 2 * math.sqrt(h * (2 * r - h))
+    if foot < wall:
+        h_min = r - math.sqrt(r * r - wall * wall / 4) if r >= wall / 2 else math.inf
+        r_min = (h * h + wall * wall / 4) / (2 * h)
+        raise ConfigError(loaded.path, key,
+                          f"a dome of radius {r:g} mm standing {h:g} mm proud meets the surface on a circle of "
+                          f"Ø{foot:.3f} mm, under the printer's {wall:g} mm wall: use a radius of at least {r_min:.2f} mm"
+                          + (f" or a height of at least {h_min:.2f} mm" if math.isfinite(h_min) else ""))
     reach = max(p.build_envelope_mm)
     if w.centre_distance_mm > 2 * reach:
         raise ConfigError(loaded.path, "wrist.centre_distance_mm", f"{w.centre_distance_mm:g} mm makes gears larger than "
