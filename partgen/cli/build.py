@@ -38,6 +38,7 @@ class Progress:
 
 def run(args) -> int:
     from .. import pipeline
+    from ..export.bill import shopping_list
 
     t0 = time.perf_counter()
     progress = Progress(args.quiet or args.json)
@@ -56,4 +57,5 @@ def run(args) -> int:
         word = "warning" if f.severity == "warn" else "note"
         print(f"partgen: {word}: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
     print(mech.bill_text(spec, man, dest, time.perf_counter() - t0))
+    print(shopping_list(man))
     return 0

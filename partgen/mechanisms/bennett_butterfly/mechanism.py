@@ -111,9 +111,6 @@ def bill_text(man: dict, dest, seconds: float) -> str:
         lines.append(f"{r['part']:<10}{r['layer']:>6}{r['solid_g']:>9.1f}{r['printed_g']:>11.1f}"
                      + (f"{r['fill_g']:>8.1f}" if r["fill_g"] else f"{'':>8}")
                      + f"{r['support_mm2']:>13.0f}{r['bed_contact_mm2']:>12.0f}")
-    lines.append("buy:")
-    for b in d["bought"]:
-        lines.append(f"  {str(b['quantity']):>9} × {b['item']:<44} {b['mass_g']:7.1f} g  ({b['for']})")
     bal = d["balance_mm"]
     short = max(v for k, v in bal.items() if k.startswith("one_slug_short"))
     lines.append(f"centre of mass within {bal['fdm']:.4f} mm of S as printed (tolerance {d['balance_tolerance_mm']:g} "

@@ -185,8 +185,6 @@ class GearChain:
         for p in parts:
             lines.append(f"{p['name']:<12}{p['role']:<11}{p['count']:>5}{p['triangles']:>11}"
                          f"{p['volume_mm3'] / 1000:>12.2f}{p['mass_g']:>9.1f}  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])}")
-        for b in man.get("purchased", []):
-            lines.append(f"buy: {b['name']} ({b['role']}" + (f", {b['teeth']} teeth" if "teeth" in b else "") + ")")
         warn = sum(f.severity == "warn" for f in mech.findings)
         lines.append(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {seconds:.2f} s"
                      + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
