@@ -235,3 +235,17 @@ def test_desktop_design_passes_check(printer):
     _, _, result, _ = check(DESKTOP, samples=24, write_plates=False, over=overrides((), printer))
     assert result.ok, [f.message for f in result.findings if f.severity == "fail"]
     assert result.figures.get("plates", 0) >= 1
+
+
+def test_version_and_python_m():
+    import subprocess
+    import sys
+
+    import partgen
+
+    got = subprocess.run([sys.executable, "-m", "partgen", "--version"], capture_output=True, text=True, timeout=60)
+    assert got.returncode == 0 and got.stdout.strip() == f"partgen {partgen.__version__}"
+    got = subprocess.run([sys.executable, "-m", "partgen", "build", "--help"], capture_output=True, text=True, timeout=60)
+    assert got.returncode == 0 and "--printer NAME|FILE" in got.stdout and "--set KEY=VALUE" in got.stdout
+    got = subprocess.run([sys.executable, "-m", "partgen", "bild"], capture_output=True, text=True, timeout=60)
+    assert got.returncode == 2
