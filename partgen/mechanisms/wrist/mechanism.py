@@ -72,7 +72,13 @@ class Wrist:
     def check(self, spec: WristSpec, kit: WristKit, samples: int | None = None, progress=None) -> Result:
         from .checks import check_wrist
 
-        return check_wrist(kit, progress=progress)
+        from ...checks.bed import bed_findings
+
+        res = check_wrist(kit, progress=progress)
+        found, on_bed = bed_findings(kit.parts, kit.printer)
+        res.add(*found)
+        res.figures["printability"] = on_bed
+        return res
 
     def trace(self, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """The ratio i(θ) and the mating angle φ(θ) over the valid range, the tooth rows; wrist.png/.svg."""
