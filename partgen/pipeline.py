@@ -256,8 +256,8 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     say("pictures")
     purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
     sections = mech.report_sections(spec, kit, result, tr, files, {})
-    bill = bill_sections(kit, mech.role_colours, purchased, printed_groups(kit))
-    sections[1:1] = bill
+    own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
+    sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit)) if x[0] not in own]
     if plates_png:
         sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
                                          f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "
