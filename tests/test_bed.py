@@ -38,8 +38,8 @@ def test_a_sphere_touches_at_a_point_and_fails():
     assert bed < 1.0  # the lowest facet at most
     # the lower cap steeper than 45° from the vertical: a cap of height r(1 - sin 45°), area 2πr h
     assert over == pytest.approx(2 * math.pi * 10.0 * 10.0 * (1 - math.sin(math.radians(45))), rel=0.03)
-    rules, found, _ = _rules([Part("ball", "x", ball)])
-    assert ("bed-contact", "ball") in rules and ("supports", "ball") in rules
+    rules, found, figures = _rules([Part("ball", "x", ball)])
+    assert ("bed-contact", "ball") in rules and figures["needs_supports_mm2"]["ball"] == pytest.approx(over, abs=0.1)
 
 
 def test_a_sealed_bore_is_a_second_shell_and_fails():
@@ -64,7 +64,7 @@ def test_an_overhang_is_measured_and_flipping_removes_it():
 
 
 def test_a_thin_edge_is_too_little_contact():
-    wedge = m3d.Manifold.cube((40.0, 1.0, 10.0))  # 40 mm² on the bed
+    wedge = m3d.Manifold.cube((15.0, 1.0, 10.0))  # 15 mm² on the bed
     rules, found, figures = _rules([Part("fin", "x", wedge)])
-    assert 40.0 < MIN_BED_CONTACT_MM2 and ("bed-contact", "fin") in rules
-    assert figures["least_bed_contact_mm2"] == pytest.approx(40.0)
+    assert 15.0 < MIN_BED_CONTACT_MM2 and ("bed-contact", "fin") in rules
+    assert figures["least_bed_contact_mm2"] == pytest.approx(15.0)

@@ -5,8 +5,8 @@ sealed void inside, no loose piece), and the overhang area steeper than the prin
 
 Rules: ``bed-contact`` fail: the faces lying on the bed (normal straight down, every corner at z = 0)
 cover less than MIN_BED_CONTACT_MM2 (a point or a line contact); ``shells`` fail: more than one
-shell; ``supports`` info: the downward faces off the bed steeper than ``overhang_deg`` from the
-vertical, their area (mm²): "needs supports" (a fact, not a failure: the slicer adds them).
+shell; the figure ``needs_supports_mm2``: per part, the downward faces off the bed steeper than
+``overhang_deg`` from the vertical, their area (mm²) (a fact, not a failure: the slicer adds them).
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from ..geometry.solid import print_arrays
 
 __all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings"]
 
-MIN_BED_CONTACT_MM2 = 50.0  # mm²: the least flat contact with the bed a printed part may stand on
+MIN_BED_CONTACT_MM2 = 20.0  # mm²: the least flat contact with the bed a printed part may stand on
 ON_BED_TOL = 1e-4  # mm: a face within this of z = 0 lies on the bed
 FLAT_COS = 0.9999  # a face whose normal is within 0.8° of straight down is flat
 
@@ -67,11 +67,8 @@ def bed_findings(parts, printer: PrinterLimits) -> tuple[list[Finding], dict]:
             found.append(Finding("printability", "fail", f"{p.name} is {n} shells, not one: a sealed void or a loose "
                                  "piece inside it (a bore closed at both ends prints as a cavity)", (p.name,), None,
                                  float(n), "", rule="shells"))
-        if over > 0.5:
+        if over > 0.5:  # a figure, not a finding: the slicer adds the supports
             figures["needs_supports_mm2"][p.name] = round(over, 1)
-            found.append(Finding("printability", "info", f"{p.name} needs supports: {over:.0f} mm² overhang steeper "
-                                 f"than the printer's {printer.overhang_deg:g}° (overhang_deg) in its print orientation",
-                                 (p.name,), None, over, "mm²", rule="supports"))
     if not math.isfinite(figures["least_bed_contact_mm2"]):
         del figures["least_bed_contact_mm2"]
     return found, figures
