@@ -202,9 +202,7 @@ def run_one(mechanism: str, design: dict, workdir: Path, check: bool = False, sa
         bad = verify_written(dest, man)
         if bad:
             out.status, out.detail = "bad_mesh", "; ".join(bad)
-        mech = getattr(loaded, "mechanism", None)
-        if mech is not None:
-            out.warned = tuple(sorted({f.code for f in mech.findings if f.severity == "warning"}))
+        out.warned = tuple(sorted({f.rule for f in loaded.mechanism.findings(loaded.spec) if f.severity == "warn"}))
     if out.status == "built" and check and mechanism == "chain":
         try:
             _, _, result, _ = pipeline.check(dest, samples=samples, write_plates=False)

@@ -42,3 +42,21 @@ def test_a_link_of_exactly_the_smallest_gear_is_not_refused_for_its_length(tmp_p
     err = capsys.readouterr().err
     assert "too short to carry two gears" not in err
     assert code in (0, 2)  # the chain's own rules may still refuse the teeth, on their key
+
+
+def test_neither_curve_nor_links_is_one_error_on_curve(tmp_path, capsys):
+    err = _err(tmp_path, capsys, _write(tmp_path, "configs/butterfly.yaml", lambda d: d.pop("curve")))
+    assert ": curve: required key is missing" in err and "more problem" not in err, err
+
+
+def test_both_curve_and_links_is_an_error_on_links(tmp_path, capsys):
+    liu = yaml.safe_load(open("configs/butterfly_liu2017.yaml"))
+    err = _err(tmp_path, capsys, _write(tmp_path, "configs/butterfly.yaml", lambda d: d.update(links=liu["links"])))
+    assert ": links: give 'curve'" in err and "not both" in err, err
+
+
+def test_a_vanishing_curve_term_is_refused_on_its_key(tmp_path, capsys):
+    def edit(d):
+        d["curve"]["polar"]["sin"][9] = 1e-300  # made no link, so drop_links' L10 was "not there"
+    err = _err(tmp_path, capsys, _write(tmp_path, "configs/butterfly.yaml", edit))
+    assert ": curve.polar.sin.9: a term under 1e-9" in err and err.count("got") == 1, err

@@ -78,6 +78,11 @@ def _describe(err: dict, data: Any, errors: list[dict]) -> tuple[str, str]:
     msg = err["msg"]
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, "):]
+    # a model-wide rule names the key it is about as "[key] problem"
+    named = re.match(r"\[([A-Za-z_][\w.\[\]]*)\] (.*)\Z", msg, re.S)
+    if named:
+        path = f"{path}.{named[1]}" if path else named[1]
+        msg = named[2]
     if err["type"] == "missing":
         return path, "required key is missing"
     if err["type"] == "extra_forbidden":
@@ -107,7 +112,7 @@ def validate(model: type[M], data: dict, path: Path) -> M:
         errors = sorted(e.errors(), key=lambda er: _rank(er, data))
         key, problem = _describe(errors[0], data, errors)
         # other problems, not counting the alternatives of a union the first error lies inside
-        others = {key_path(tuple(er["loc"]), data) for er in errors} - {key}
+        others = {_describe(er, data, errors)[0] for er in errors} - {key}
         others = {o for o in others if not (key.startswith(o) and key[len(o):len(o) + 1] in ".[")}
         if errors[0]["type"] == "extra_forbidden" and "did you mean" in problem:
             others -= {key.rsplit(".", 1)[0] + "." + problem.split("'")[1]}

@@ -27,6 +27,15 @@ def _zero_or_at_least(v: float) -> float:
 
 
 Gap = Annotated[float, Field(ge=0, le=MAX), AfterValidator(_zero_or_at_least)]  # mm
+
+
+def _zero_or_not_tiny(v: float) -> float:
+    if 0 < abs(v) < 1e-9:
+        raise ValueError("a term under 1e-9 curve units is nothing at any print scale: write 0 to leave it out")
+    return v
+
+
+Coeff = Annotated[float, Field(ge=-MAX, le=MAX), AfterValidator(_zero_or_not_tiny)]  # a curve term, curve units
 Ratio = Annotated[float, Field(ge=0.01, le=100)]
 Density = Annotated[float, Field(gt=0, le=30)]  # g/cm³ (osmium is 22.6)
 Teeth = Annotated[int, Field(ge=4, le=1000)]

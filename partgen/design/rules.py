@@ -9,7 +9,7 @@ check failure can be traced to the warning that announced it):
 tip-root             the tip of each gear of a mesh clears the root of its mate by ≥ 0.05 module
 contact-ratio        a mesh's transverse contact ratio is ≥ ``checks.min_contact_ratio``
 involute             the mate's tip meets a gear's flank on its involute, not below its form radius
-backlash             a mesh has backlash ≥ 0 at its centre distance
+backlash             a mesh has backlash ≥ 0 at its centre distance (to 1e-6 mm)
 tip-width            a gear's tooth tip is ≥ ``checks.min_tip_width_roads`` printer roads wide
 wall                 the material between a hole and the part's edge is ≥ min_wall_lines × line_width_mm
 hole                 a hole that runs on a pin or axle is ≥ the printer's min_hole_diameter_mm
@@ -32,6 +32,8 @@ __all__ = ["TIP_ROOT_COEFF", "CODES", "GearRules", "Breach", "check_generable", 
            "mate_contact_radius", "mesh_breaches", "gear_breaches", "hole_breach", "wall_breach"]
 
 TIP_ROOT_COEFF = 0.05  # × module: the least clearance between a tip and its mate's root
+BACKLASH_TOL = 1e-6  # mm: backlash this close to zero is zero, not interference
+
 CODES = ("tip-root", "contact-ratio", "involute", "backlash", "tip-width", "wall", "hole", "hole-to-size")
 
 
@@ -151,7 +153,7 @@ def mesh_breaches(g1: GearSpec, g2: GearSpec, a: float, rules: GearRules, names:
                                               g2.profile_shift, s.backlash_per_gear, s.backlash_per_gear, a)
     except ValueError:
         j = -math.inf
-    if j < 0:
+    if j < -BACKLASH_TOL:  # a designed backlash of 0 is met (exact arithmetic leaves ±1e-12 mm)
         out.append(Breach("backlash", f"no backlash ({j:.3f} mm) at centre distance {a:.3f} mm", j, 0.0))
         return out
     eps = contact_ratio(g1, g2, a)

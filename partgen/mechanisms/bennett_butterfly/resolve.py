@@ -9,7 +9,9 @@ from .params import BennettParams
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, printer_limits
 
-__all__ = ["resolve_bennett"]
+__all__ = ["resolve_bennett", "MIN_TWIST_DEG"]
+
+MIN_TWIST_DEG = 1.0  # degrees: the smallest twist α or β partgen builds (see resolve_bennett)
 
 
 def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
@@ -25,6 +27,16 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
                                   k.scales[1] / s1, k.scales[2] / s1, k.scales[3] / s1)
     except DesignError as e:
         raise ConfigError(loaded.path, "linkage.beta_deg" if k.beta_deg is not None else "linkage.b_mm", e.problem) from None
+    # a Bennett linkage is spatial by its twists: within a degree of 0° or 180° its joint axes are
+    # all but parallel, features meant to stand apart come within hundredths of a millimetre of each
+    # other, and the parts are not sound solids (0.011° made link04 two touching bodies); 1° builds
+    for key, twist in (("linkage.alpha_deg", bb.alpha),
+                       ("linkage.beta_deg" if k.beta_deg is not None else "linkage.b_mm", bb.beta)):
+        deg = math.degrees(twist)
+        if min(deg, 180.0 - deg) < MIN_TWIST_DEG:
+            what = "α" if key == "linkage.alpha_deg" else "β (from sin β = b/a sin α)"
+            raise ConfigError(loaded.path, key, f"a twist {what} of {deg:.4g}° makes the linkage all but planar: partgen "
+                              f"builds Bennett linkages with twists from {MIN_TWIST_DEG:g}° to {180 - MIN_TWIST_DEG:g}°")
     if parts.bar_diameter_mm > parts.boss_length_mm:
         raise ConfigError(loaded.path, "parts.bar_diameter_mm", f"{parts.bar_diameter_mm} mm is thicker than a boss is long "
                           f"({parts.boss_length_mm} mm): a bar would stand proud of its boss into the next one on the pin")

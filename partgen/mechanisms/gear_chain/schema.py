@@ -6,8 +6,8 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
 
-from ...config.schema import (MAX, Density, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict, Teeth,
-                              Text)
+from ...config.schema import (MAX, Coeff, Density, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict,
+                              Teeth, Text)
 
 __all__ = ["Design"]
 
@@ -15,18 +15,18 @@ __all__ = ["Design"]
 class Polar(Strict):
     """ρ(θ) = constant + Σ sin[k]·sin kθ + cos[k]·cos kθ (curve units)."""
 
-    constant: Finite = 0.0
-    sin: dict[Annotated[int, Field(ge=1, le=64)], Finite] = {}
-    cos: dict[Annotated[int, Field(ge=1, le=64)], Finite] = {}
+    constant: Coeff = 0.0
+    sin: dict[Annotated[int, Field(ge=1, le=64)], Coeff] = {}
+    cos: dict[Annotated[int, Field(ge=1, le=64)], Coeff] = {}
 
 
 class Cartesian(Strict):
     """x = Σ a_k cos kθ + b_k sin kθ, y = Σ c_k cos kθ + d_k sin kθ; lists indexed by k from 0."""
 
-    a: Annotated[list[Finite], Field(min_length=1, max_length=65)]
-    b: Annotated[list[Finite], Field(min_length=1, max_length=65)]
-    c: Annotated[list[Finite], Field(min_length=1, max_length=65)]
-    d: Annotated[list[Finite], Field(min_length=1, max_length=65)]
+    a: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    b: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    c: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    d: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
 
     @model_validator(mode="after")
     def _same_length(self):
@@ -207,10 +207,14 @@ class Design(Strict):
 
     @model_validator(mode="after")
     def _one_source(self):
-        if (self.curve is None) == (self.links is None):
-            raise ValueError("give exactly one of 'curve' (derive the links) or 'links' (a design table)")
+        if self.curve is None and self.links is None:
+            raise ValueError("[curve] required key is missing: give 'curve' (derive the links from a curve) or "
+                             "'links' (a design table)")
+        if self.curve is not None and self.links is not None:
+            raise ValueError("[links] give 'curve' (derive the links) or 'links' (a design table), not both")
         if self.belts is not None and self.teeth != "auto":
-            raise ValueError("a belt design chooses its pulleys: give 'teeth: auto'")
+            raise ValueError("[teeth] a belt design chooses its pulleys: give 'teeth: auto'")
         if self.target is not None and self.curve is not None:
-            raise ValueError("'target' is for design tables ('links'); a 'curve' design is traced against its curve")
+            raise ValueError("[target] 'target' is for design tables ('links'); a 'curve' design is traced against "
+                             "its curve")
         return self
