@@ -13,6 +13,8 @@ from pathlib import Path
 from typing import NamedTuple
 
 from .config.loader import LoadedDesign
+from .config.overrides import Overrides, parse_set
+from .config.yamlio import dump_yaml
 from .core.findings import Finding, Result
 from .core.protocol import Kit, Mechanism, Trace
 from .errors import ConfigError, DesignError
@@ -20,7 +22,7 @@ from .export.kit import atomic_dir, group_parts, printed, write_kit
 from .export.outputs import claim_output
 from .mechanisms import REGISTRY, load_design
 
-__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report"]
+__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
 
 
 @dataclass(frozen=True)
@@ -61,17 +63,24 @@ class Traced(NamedTuple):
     plots_dir: Path | None
 
 
-def _raw(target) -> tuple[LoadedDesign, Path | None]:
+def overrides(sets=(), printer: str | None = None) -> Overrides:
+    """The command line's changes to a design: ``--set KEY=VALUE`` texts and ``--printer NAME|FILE``
+    (a malformed --set raises the usage error)."""
+    return Overrides(tuple(parse_set(t) for t in sets), printer)
+
+
+def _raw(target, over: Overrides | None = None) -> tuple[LoadedDesign, Path | None]:
     target = Path(target)
     kit_dir = target if target.is_dir() else None
-    return load_design(target / "design.yaml" if kit_dir else target), kit_dir
+    return load_design(target / "design.yaml" if kit_dir else target, over), kit_dir
 
 
-def load(target, raw: LoadedDesign | None = None) -> Loaded:
-    """Read, validate and resolve a design (or a kit folder's design.yaml)."""
+def load(target, raw: LoadedDesign | None = None, over: Overrides | None = None) -> Loaded:
+    """Read, validate and resolve a design (or a kit folder's design.yaml), with the command line's
+    ``over``rides (--set, --printer)."""
     if isinstance(target, Loaded):
         return target
-    got, kit_dir = _raw(target)
+    got, kit_dir = _raw(target, over) if raw is None else (raw, Path(target) if Path(target).is_dir() else None)
     raw = raw or got
     mech = REGISTRY[raw.design.kind]
     return Loaded(raw, mech, mech.resolve(raw), kit_dir)
@@ -83,7 +92,7 @@ _KITS: dict = {}  # one built kit per process: (design bytes, printer bytes) -> 
 def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
     """The kit of a loaded design, built once per process (check, trace and report share it);
     ``fresh``: build it anew (what `build` writes is always built by this call)."""
-    key = (loaded.mechanism.kind, loaded.path.read_bytes(), loaded.raw.printer_path.read_bytes())
+    key = (loaded.mechanism.kind, dump_yaml(loaded.raw.document()), dump_yaml(loaded.raw.printer_document()))
     if fresh or key not in _KITS:
         try:
             kit = loaded.mechanism.build(loaded.spec, progress)
@@ -101,9 +110,9 @@ def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, op
     return claim_output(dest, kind, option, (raw.path, raw.printer_path), notify)
 
 
-def build(path, dest=None, progress=None, notify=None) -> Built:
+def build(path, dest=None, progress=None, notify=None, over: Overrides | None = None) -> Built:
     """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made."""
-    raw, _ = _raw(path)
+    raw, _ = _raw(path, over)
     claim = output_claim(raw, dest, "kit", None, "-o", notify)
     loaded = load(path, raw)
     kit = make_kit(loaded, progress, fresh=True)
@@ -166,12 +175,12 @@ def plan_plates(loaded: Loaded, kit: Kit, result: Result):
 
 
 def check(target, samples: int | None = None, progress=None, plates_dir=None, write_plates: bool = True,
-          notify=None) -> Checked:
+          notify=None, over: Overrides | None = None) -> Checked:
     """Check a design (CONFIG) or a built kit (KITDIR: its STLs compared byte for byte with what its
     design.yaml builds). Lays the parts out on build plates and writes a 3MF per plate and a picture."""
     from .export.plates import plate_3mf
 
-    raw, kit_dir = _raw(target)
+    raw, kit_dir = _raw(target, over)
     claim = None
     if write_plates:
         claim = output_claim(raw, Path(plates_dir) if plates_dir else (kit_dir / "plates" if kit_dir else None),
@@ -199,10 +208,11 @@ def check(target, samples: int | None = None, progress=None, plates_dir=None, wr
     return Checked(loaded, kit, result, folder)
 
 
-def trace(target, samples: int | None = None, plots_dir=None, animate: bool = True) -> Traced:
+def trace(target, samples: int | None = None, plots_dir=None, animate: bool = True,
+          over: Overrides | None = None) -> Traced:
     """The mechanism's motion over its range and its figures, written into ``plots_dir`` (default
     out/<name>/trace, or KITDIR/trace; False: none)."""
-    loaded = load(target)
+    loaded = load(target, over=over)
     if plots_dir is None and loaded.kit_dir is not None:
         plots_dir = loaded.kit_dir / "trace"
     claim = None if plots_dir is False else output_claim(loaded.raw, plots_dir, "trace", "trace", "--plots")
@@ -214,7 +224,7 @@ def trace(target, samples: int | None = None, plots_dir=None, animate: bool = Tr
     return Traced(loaded, tr, claim.dest)
 
 
-def report(target, dest=None, samples: int | None = None, progress=None) -> Path:
+def report(target, dest=None, samples: int | None = None, progress=None, over: Overrides | None = None) -> Path:
     """Write DIR/index.html (default out/<name>/report/, or KITDIR/report): one self-contained page
     with the mechanism's sections, the bill of parts with pictures, what to buy, the build plates.
     The kit is built once and shared by the check, the trace and the pictures."""
@@ -222,7 +232,7 @@ def report(target, dest=None, samples: int | None = None, progress=None) -> Path
     from .export.bill import bill_sections
 
     say = progress or (lambda step: None)
-    raw, kit_dir = _raw(target)
+    raw, kit_dir = _raw(target, over)
     claim = output_claim(raw, dest if dest is not None else (kit_dir / "report" if kit_dir else None),
                          "report", "report", "-o")
     say("build")

@@ -48,7 +48,7 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     m = re.search(r"<title>IMAGES:(\d+):(\d+):H2:(\d+)</title>", dom)
     assert m, dom[:500]
     total, loaded, headings = map(int, m.groups())
-    assert total >= 40 and loaded == total and headings == 6  # design, bill of parts, stacking, trace, check, build plates
+    assert total >= 40 and loaded == total and headings == 7  # design, bill of parts, filament, stacking, trace, check, build plates
     shot = tmp_path / "shot.png"
     subprocess.run(cmd[:-2] + ["--window-size=1280,2000", f"--screenshot={shot}", probe.as_uri()],
                    capture_output=True, timeout=120)

@@ -92,6 +92,6 @@ def check_printability(kit: Kit, geo: dict[str, PartGeometry], extents: dict[str
             figures["narrowest_tip_mm"] = min(figures["narrowest_tip_mm"], gear.tip_thickness)
             for b in rules.gear_breaches(gear, gear_rule, name):
                 findings.append(Finding("printability", "fail", f"{b.message} ({kit.params.checks.min_tip_width_roads:g} "
-                                        f"roads of {pr.resolution:g} mm)", (name,), None, b.value, "mm", rule=b.rule))
+                                        f"lines of {pr.line_width:g} mm, the printer's line_width_mm)", (name,), None, b.value, "mm", rule=b.rule))
     figures = {k: round(float(v), 4) for k, v in figures.items() if np.isfinite(v)}
     return findings, figures

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .common import note, print_json
+from .common import note, print_json, add_design_options, overrides
 
 __all__ = ["add_parser", "run"]
 
@@ -16,6 +16,7 @@ def add_parser(sub) -> None:
     p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress")
     p.add_argument("--json", action="store_true", help="print one JSON object (ok, kit folder, parts) and nothing else")
+    add_design_options(p)
     p.set_defaults(run=run)
 
 
@@ -37,10 +38,11 @@ class Progress:
 
 def run(args) -> int:
     from .. import pipeline
+    from ..export.bill import shopping_list
 
     t0 = time.perf_counter()
     progress = Progress(args.quiet or args.json)
-    loaded, kit, man, dest = pipeline.build(args.config, args.out, progress, note)
+    loaded, kit, man, dest = pipeline.build(args.config, args.out, progress, note, overrides(args))
     progress.done()
     mech, spec = loaded.mechanism, loaded.spec
     findings = mech.findings(spec)
@@ -55,4 +57,5 @@ def run(args) -> int:
         word = "warning" if f.severity == "warn" else "note"
         print(f"partgen: {word}: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
     print(mech.bill_text(spec, man, dest, time.perf_counter() - t0))
+    print(shopping_list(man))
     return 0

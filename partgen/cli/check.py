@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .common import bounded_int, note, print_json
+from .common import bounded_int, note, print_json, add_design_options, overrides
 
 __all__ = ["add_parser", "run"]
 
@@ -20,6 +20,7 @@ def add_parser(sub) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object (ok, findings, figures) and nothing else")
     p.add_argument("--plates", default=None, help="folder for the build plates (default: <kit>/plates)")
     p.add_argument("--no-plates", action="store_true", help="lay out the build plates but write nothing")
+    add_design_options(p)
     p.set_defaults(run=run)
 
 
@@ -46,7 +47,7 @@ def run(args) -> int:
 
     t0 = time.perf_counter()
     loaded, kit, result, folder = pipeline.check(args.target, args.samples, Bar(not args.json), args.plates,
-                                                 not args.no_plates, note)
+                                                 not args.no_plates, note, overrides(args))
     seconds = time.perf_counter() - t0
     if args.json:
         out = {"ok": result.ok, "kind": loaded.mechanism.kind, "design": loaded.name, "config": str(loaded.path),

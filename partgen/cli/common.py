@@ -7,7 +7,7 @@ import json
 import math
 import sys
 
-__all__ = ["bounded_int", "note", "print_json", "json_safe"]
+__all__ = ["bounded_int", "note", "print_json", "json_safe", "add_design_options", "overrides"]
 
 
 def bounded_int(lo: int, hi: int):
@@ -44,3 +44,21 @@ def json_safe(v):
     if isinstance(v, float) and not math.isfinite(v):
         return None
     return v
+
+
+def add_design_options(p: argparse.ArgumentParser) -> None:
+    """``--printer NAME|FILE`` and ``--set KEY=VALUE`` (repeatable): what every command may change
+    in the design before it is validated."""
+    p.add_argument("--printer", default=None, metavar="NAME|FILE",
+                   help="printer profile instead of the design's: a shipped name (prusa_mk4, ender3_v3, ...) or a .yaml file")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="sets",
+                   help="change one design value as if written in the YAML (gears.module_mm=1.5); repeatable")
+    p.set_defaults(usage=p.format_usage)
+
+
+def overrides(args):
+    """The command line's overrides of the design (``config.overrides.Overrides``); a malformed
+    --set raises the usage error."""
+    from ..pipeline import overrides as make
+
+    return make(getattr(args, "sets", []) or [], getattr(args, "printer", None))

@@ -140,6 +140,8 @@ def _run(argv: list[str], want_json: bool) -> int:
     except PartgenError as e:
         if getattr(args, "json", False):
             print_json(error_json(e))
+        elif getattr(e, "usage", False) and getattr(args, "usage", None):  # a bad --set or --printer
+            print(args.usage(), end="", file=sys.stderr)
         print(f"partgen: error: {e}", file=sys.stderr)
         return 2
     except MeshError as e:  # partgen made a broken part: a bug, named, never written

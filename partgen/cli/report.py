@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .common import bounded_int, print_json
+from .common import bounded_int, print_json, add_design_options, overrides
 
 __all__ = ["add_parser", "run"]
 
@@ -16,6 +16,7 @@ def add_parser(sub) -> None:
     p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/report)")
     p.add_argument("--samples", type=bounded_int(4, 10_000), default=None, help="samples of the motion for the check")
     p.add_argument("--json", action="store_true", help="print one JSON object (ok, report path) and nothing else")
+    add_design_options(p)
     p.set_defaults(run=run)
 
 
@@ -28,7 +29,7 @@ def run(args) -> int:
     def say(step):
         if tty:
             print(f"\r  report: {step:<12}", end="", file=sys.stderr, flush=True)
-    out = pipeline.report(args.config, args.out, args.samples, say)
+    out = pipeline.report(args.config, args.out, args.samples, say, overrides(args))
     if tty:
         print("\r" + " " * 30 + "\r", end="", file=sys.stderr)
     if args.json:

@@ -3,7 +3,7 @@ mechanism's own figure and table)."""
 
 from __future__ import annotations
 
-from .common import bounded_int, print_json
+from .common import bounded_int, print_json, add_design_options, overrides
 
 __all__ = ["add_parser", "run"]
 
@@ -16,6 +16,7 @@ def add_parser(sub) -> None:
     p.add_argument("--samples", type=bounded_int(16, 36_000), default=None, help="samples of the motion, 16 to 36,000 (default: the mechanism's)")
     p.add_argument("--plots", default=None, help="folder for the plots (default out/<name>/trace)")
     p.add_argument("--no-plots", action="store_true")
+    add_design_options(p)
     p.set_defaults(run=run)
 
 
@@ -23,7 +24,7 @@ def run(args) -> int:
     from .. import pipeline
     from ..export.outputs import check_text_target, write_text_file
 
-    loaded = pipeline.load(args.config)
+    loaded = pipeline.load(args.config, over=overrides(args))
     mech = loaded.mechanism
     if args.csv:
         check_text_target(args.csv, "--csv", mech.csv_header, (loaded.path,))

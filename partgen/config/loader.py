@@ -3,6 +3,7 @@ naming the file, the key path and the problem."""
 
 from __future__ import annotations
 
+import copy
 import difflib
 import re
 from dataclasses import dataclass
@@ -13,11 +14,12 @@ from pydantic import BaseModel, ValidationError
 
 from ..core.printer import PrinterLimits
 from ..errors import ConfigError
+from .overrides import NO_OVERRIDES, Overrides, UsageError, apply_sets, blame
 from .schema import Printer
 from .yamlio import read_yaml_file
 
 __all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path", "PRINTERS_DIR", "shipped_printers",
-           "printer_path", "printer_limits"]
+           "printer_path", "printer_limits", "command_line_printer"]
 
 PRINTERS_DIR = Path(__file__).resolve().parent.parent / "printers"
 
@@ -30,6 +32,15 @@ class LoadedDesign:
     design: BaseModel  # the mechanism's schema (``partgen.mechanisms.<kind>.schema``)
     printer_path: Path
     printer: Printer
+    data: dict | None = None  # the design as validated: the file with the command line's --set applied
+    printer_data: dict | None = None  # the printer profile as validated (--printer's when given)
+
+    def document(self) -> dict:
+        """A copy of the design's mapping as validated (what a kit folder's design.yaml records)."""
+        return copy.deepcopy(self.data) if self.data is not None else read_yaml(self.path)
+
+    def printer_document(self) -> dict:
+        return copy.deepcopy(self.printer_data) if self.printer_data is not None else read_yaml(self.printer_path)
 
 
 def read_yaml(path: Path) -> dict:
@@ -142,29 +153,65 @@ def printer_path(value: str, design: Path, key: str = "printer", folders=()) -> 
     return path
 
 
-def load_design(path: str | Path, kinds: Mapping[str, type[BaseModel]]) -> LoadedDesign:
+def command_line_printer(value: str) -> Path:
+    """``--printer NAME|FILE``: a shipped profile by name, or a .yaml file anywhere (the user named
+    it on the command line; relative to the working folder)."""
+    if re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.-]*", value) and not value.endswith((".yaml", ".yml")):
+        path = PRINTERS_DIR / f"{value}.yaml"
+        if path.is_file():
+            return path
+        names = shipped_printers()
+        close = difflib.get_close_matches(value, names, n=1, cutoff=0.6)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        raise UsageError("--printer", value, f"no shipped printer of that name: {hint}(shipped: {', '.join(names)}; "
+                         "or give a .yaml profile)")
+    path = Path(value)
+    if not path.is_file():
+        raise UsageError("--printer", value, "no such printer profile: give a shipped name "
+                         f"({', '.join(shipped_printers())}) or a .yaml file")
+    return path.resolve()
+
+
+def load_design(path: str | Path, kinds: Mapping[str, type[BaseModel]], over: Overrides = NO_OVERRIDES) -> LoadedDesign:
     """Design and printer profile of a design file; the printer path is relative to the design.
     ``kinds``: kind -> schema (the mechanisms' registry): an unknown or misspelt ``kind`` is one
-    error on ``kind`` naming the kinds there are, before any other key is read."""
+    error on ``kind`` naming the kinds there are, before any other key is read. ``over``: the
+    command line's --set (written into the mapping before it is validated) and --printer."""
     path = Path(path)
     data = read_yaml(path)
+    if over.sets:
+        data = apply_sets(data, over.sets, path)
     kind = data.get("kind")
     if not isinstance(kind, str) or kind not in kinds:
         names = ", ".join(kinds)
         if kind is None:
-            raise ConfigError(path, "kind", f"required key is missing: say which mechanism this is ({names})")
+            raise blame(ConfigError(path, "kind", f"required key is missing: say which mechanism this is ({names})"),
+                        over.sets)
         if not isinstance(kind, str):
-            raise ConfigError(path, "kind", f"should be one of {names}, got a {type(kind).__name__}")
+            raise blame(ConfigError(path, "kind", f"should be one of {names}, got a {type(kind).__name__}"), over.sets)
         close = difflib.get_close_matches(kind, list(kinds), n=1, cutoff=0.6)
         hint = f"did you mean {close[0]!r}? " if close else ""
-        raise ConfigError(path, "kind", f"unknown mechanism {str(kind)[:40]!r}: {hint}(kinds: {names})")
-    design = validate(kinds[kind], data, path)
-    ppath = printer_path(design.printer, path)
-    printer = validate(Printer, read_yaml(ppath), ppath)
-    return LoadedDesign(path, design, ppath, printer)
+        raise blame(ConfigError(path, "kind", f"unknown mechanism {str(kind)[:40]!r}: {hint}(kinds: {names})"),
+                    over.sets)
+    try:
+        design = validate(kinds[kind], data, path)
+        ppath = command_line_printer(over.printer) if over.printer is not None else printer_path(design.printer, path)
+    except ConfigError as e:
+        raise blame(e, over.sets) from None
+    pdata = read_yaml(ppath)
+    printer = validate(Printer, pdata, ppath)
+    return LoadedDesign(path, design, ppath, printer, data, pdata)
 
 
 def printer_limits(p: Printer) -> PrinterLimits:
     """The validated printer profile as the kernels read it (mm)."""
-    return PrinterLimits(p.name, tuple(p.build_envelope_mm), p.resolution_mm, p.min_hole_diameter_mm,
-                         p.min_gear_diameter_mm, p.min_link_length_mm, p.min_wall_mm, p.min_hole_to_size_diameter_mm)
+    lw = p.line_width
+    lines = p.min_wall_lines if p.min_wall_lines is not None else p.min_wall_mm / lw
+    return PrinterLimits(name=p.name, envelope=tuple(p.build_envelope_mm), line_width=lw,
+                         min_hole=p.min_hole_diameter_mm, min_gear=p.min_gear_diameter_mm,
+                         min_link=p.min_link_length_mm, min_wall_lines=lines,
+                         min_hole_to_size=p.min_hole_to_size_diameter_mm, nozzle=p.nozzle_diameter_mm,
+                         layer_height=p.layer_height_mm, xy_accuracy=p.xy_accuracy_mm,
+                         running_clearance=p.fits.running_clearance_diametral_mm if p.fits else None,
+                         press_clearance=p.fits.press_fit_clearance_diametral_mm if p.fits else None,
+                         overhang_deg=p.overhang_deg)

@@ -48,16 +48,57 @@ class Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
 
 
+class Fits(Strict):
+    """Clearances the maker measured on this printer (diametral: hole minus pin, mm)."""
+
+    running_clearance_diametral_mm: Annotated[float, Field(ge=0, le=5)] = Field(
+        description="a pin turns freely in a hole this much larger (revolute joints)")
+    press_fit_clearance_diametral_mm: Annotated[float, Field(ge=-1, le=5)] = Field(
+        description="a pin pressed into a hole this much larger stays put (negative: interference)")
+
+
 class Printer(Strict):
+    """A printer profile (``partgen/printers/<name>.yaml``); every length in mm, every angle in degrees.
+    The rules of `check` derive from these: tooth tips ≥ ``checks.min_tip_width_roads`` × line width,
+    walls ≥ min_wall_lines × line width, running holes ≥ min_hole_diameter_mm, holes held to size ≥
+    min_hole_to_size_diameter_mm."""
+
     name: Annotated[str, Field(min_length=1, max_length=200)]
     build_envelope_mm: Annotated[list[Length], Field(min_length=3, max_length=3)]
-    resolution_mm: Length
-    min_hole_diameter_mm: Length = Field(description="smallest reliable revolute-joint hole")
-    min_gear_diameter_mm: Length = Field(description="smallest reliable gear (reference pitch diameter)")
-    min_link_length_mm: Length
-    min_wall_mm: Length
+    nozzle_diameter_mm: Length = Field(0.4, description="the nozzle's bore")
+    line_width_mm: Length | None = Field(None, description="width of one extruded line (road)")
+    resolution_mm: Length | None = Field(None, description="old name of line_width_mm (read only when that is absent)")
+    layer_height_mm: Length = Field(0.2, description="layer height the rules assume")
+    xy_accuracy_mm: Annotated[float, Field(ge=0, le=5)] = Field(0.1, description="± error of a printed outline in x and y")
+    min_hole_diameter_mm: Length = Field(description="smallest hole that runs reliably on a pin or axle")
     min_hole_to_size_diameter_mm: Length = Field(3.0, description="smallest hole held to size (press-fit D, pen bore)")
+    min_wall_lines: Annotated[float, Field(ge=1, le=100)] | None = Field(
+        None, description="thinnest wall, in lines: the thinnest wall is min_wall_lines × line_width_mm")
+    min_wall_mm: Length | None = Field(None, description="old form of min_wall_lines (a length)")
+    min_gear_diameter_mm: Length = Field(15.0, description="smallest reliable gear (reference pitch diameter)")
+    min_link_length_mm: Length = Field(20.0, description="smallest link, joint to joint")
+    overhang_deg: Annotated[float, Field(ge=0, le=89)] = Field(
+        45.0, description="steepest overhang printed without supports, from the vertical")
+    fits: Fits | None = None
 
+    @model_validator(mode="after")
+    def _one_each(self):
+        if (self.line_width_mm is None) == (self.resolution_mm is None):
+            raise ValueError("give line_width_mm (the width of one extruded line, mm)"
+                             + ("; resolution_mm is its old name, give only one" if self.line_width_mm else ""))
+        if (self.min_wall_lines is None) == (self.min_wall_mm is None):
+            raise ValueError("give min_wall_lines (the thinnest wall, in lines of line_width_mm)"
+                             + ("; min_wall_mm is its old form, give only one" if self.min_wall_lines else ""))
+        return self
+
+    @property
+    def line_width(self) -> float:
+        return self.line_width_mm if self.line_width_mm is not None else self.resolution_mm
+
+    @property
+    def min_wall(self) -> float:
+        """The thinnest wall, mm."""
+        return self.min_wall_lines * self.line_width if self.min_wall_lines is not None else self.min_wall_mm
 
 
 class Material(Strict):

@@ -9,17 +9,41 @@ __all__ = ["PrinterLimits", "Material"]
 
 @dataclass(frozen=True)
 class PrinterLimits:
-    """A printer's profile (mm). ``min_hole``: the smallest hole that runs reliably on a pin or
-    axle; ``min_hole_to_size``: the smallest hole it holds to size (a press-fit D, a pen bore)."""
+    """A printer's profile as the rules read it (mm, degrees for ``overhang_deg``).
+
+    envelope: build volume x, y, z. line_width: one extruded line (road); layer_height; nozzle.
+    xy_accuracy: ± error of a printed outline. min_hole: the smallest hole that runs reliably on a
+    pin or axle; min_hole_to_size: the smallest hole it holds to size (a press-fit D, a pen bore).
+    min_wall_lines: the thinnest wall in lines (``min_wall`` = lines × line width). min_gear: the
+    smallest reliable gear (pitch diameter); min_link: the smallest link. running_clearance,
+    press_clearance: the fits the maker measured (diametral; None when the profile gives none).
+    overhang_deg: the steepest overhang printed without supports, from the vertical.
+    """
 
     name: str
     envelope: tuple[float, float, float]
-    resolution: float
+    line_width: float
     min_hole: float
     min_gear: float
     min_link: float
-    min_wall: float
+    min_wall_lines: float
     min_hole_to_size: float = 3.0
+    nozzle: float = 0.4
+    layer_height: float = 0.2
+    xy_accuracy: float = 0.1
+    running_clearance: float | None = None
+    press_clearance: float | None = None
+    overhang_deg: float = 45.0
+
+    @property
+    def min_wall(self) -> float:
+        """The thinnest wall, mm: min_wall_lines × line_width."""
+        return self.min_wall_lines * self.line_width
+
+    @property
+    def resolution(self) -> float:
+        """Old name of ``line_width`` (mm)."""
+        return self.line_width
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ from .rules import Breach, GearRules, ToothSystemError, check_generable, gear_br
 
 __all__ = [
     "Limits", "Stage", "Finding", "eq11_ratios", "idler_centre", "make_stage",
-    "choose_stage", "verify_stage", "stage_breaches",
+    "choose_stage", "verify_stage", "stage_breaches", "module_grid", "MODULE_GRID", "MODULE_RANGE",
 ]
 
 
@@ -43,6 +43,9 @@ class Limits:
     tip_gap: float
     idler_reach: float
     rules: GearRules | None = None  # the mesh and gear rules `partgen check` holds the kit to
+    axle_diameter: float = 0.0  # the joints' axle (``joints.axle_diameter_mm``): the bore grows with it
+    min_axle_diameter: float = 0.0  # the smallest axle whose running bore the printer still makes
+    advise: bool = True  # a refusal computes the settings that would work (off while a search tries many)
 
 
 def design_finding(severity: str, rule: str, message: str, key: str = "") -> Finding:
@@ -235,36 +238,68 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
         raise DesignError(
             f"link {j} (S = {length:.3f} mm): no whole teeth give the Eq 11 ratio {ratio} with D and G "
             f"at least {zmin} teeth and their tips {limits.tip_gap:g} mm apart at module "
-            f"{system.module:g} mm{why}; {_what_works(length, ratio, system, limits)}", "teeth")
+            f"{system.module:g} mm{why}" + (f"; {_what_works(length, ratio, system, limits)}" if limits.advise else ""),
+            "teeth")
     return make_stage(j, length, ratio, best, system)
 
 
+MODULE_GRID = 0.05  # mm: the step of the modules tried (``gears.module_mm: auto`` and the refusals' ranges)
+MODULE_RANGE = (0.3, 5.0)  # mm: the modules tried
+
+
+def module_grid(lo: float = MODULE_RANGE[0], hi: float = MODULE_RANGE[1]) -> list[float]:
+    """The modules tried, largest first (mm, multiples of MODULE_GRID)."""
+    n0, n1 = math.ceil(lo / MODULE_GRID - 1e-9), math.floor(hi / MODULE_GRID + 1e-9)
+    return [round(n * MODULE_GRID, 4) for n in range(n1, n0 - 1, -1)]
+
+
+def _ranges(values: list[float]) -> str:
+    """Sorted grid values as ranges: ``0.95–1.35 mm, 2–2.2 mm``."""
+    values = sorted(values)
+    runs, start, prev = [], values[0], values[0]
+    for v in values[1:]:
+        if v - prev > MODULE_GRID * 1.5:
+            runs.append((start, prev))
+            start = v
+        prev = v
+    runs.append((start, prev))
+    return ", ".join(f"{a:g} mm" if a == b else f"{a:g}–{b:g} mm" for a, b in runs)
+
+
 def _what_works(length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> str:
-    """Settings that would let ``choose_stage`` find teeth for this link, in words: the ISO 53 tooth
-    proportions (when the rules need them), a smaller module, a longer link."""
+    """Settings that would let ``choose_stage`` find teeth for this link, computed: the ISO 53 tooth
+    proportions (when the rules need them), the modules that work (any direction: tip width wants a
+    larger one, the bore a smaller one), the smallest scale of the link, the largest axle."""
     from dataclasses import replace
 
-    def works(length_: float, system_: ToothSystem) -> bool:
+    def works(length_: float, system_: ToothSystem, limits_: Limits = limits) -> bool:
         try:
-            return _search(length_, ratio, system_, limits)[0] is not None
+            return _search(length_, ratio, system_, limits_)[0] is not None
         except DesignError:
             return False
 
-    found = []
     std = replace(system, addendum_coeff=1.0, dedendum_coeff=1.25, cutter_tip_coeff=0.38)
     if std != system and works(length, std):  # the proportions are what breaks the rules
         return "would work: ISO 53 tooth proportions (addendum_coeff 1, dedendum_coeff 1.25, cutter_tip_radius_coeff 0.38)"
-    for f in (0.9, 0.8, 0.7, 0.6):
-        m = math.floor(system.module * f / 0.05) * 0.05
-        if 0 < m < system.module and works(length, replace(system, module=round(m, 2))):
-            found.append(f"gears.module_mm ≤ {m:.2f}")
-            break
-    for f in (1.1, 1.25, 1.5, 2.0):
+    found = []
+    modules = [m for m in module_grid() if works(length, replace(system, module=m))]
+    if modules:
+        found.append(f"gears.module_mm in {_ranges(modules)} (or gears.module_mm: auto)")
+    for f in (1.05, 1.1, 1.15, 1.2, 1.25, 1.3, 1.4, 1.5, 1.75, 2.0, 2.5, 3.0):
         if works(length * f, system):
-            found.append(f"the link {f:g}× as long ({length * f:.1f} mm: a scale {f:g}× larger)")
+            found.append(f"the link {f:g}× as long ({length * f:.1f} mm: the design's scale or link lengths {f:g}× larger)")
             break
+    if limits.axle_diameter > 0:
+        d = limits.axle_diameter
+        while d - 0.5 >= limits.min_axle_diameter - 1e-9:
+            d = round(d - 0.5, 4)
+            if works(length, system, replace(limits, min_root_diameter=limits.min_root_diameter - (limits.axle_diameter - d),
+                                             axle_diameter=d)):
+                found.append(f"joints.axle_diameter_mm ≤ {d:g} (a smaller bore lets smaller gears carry it; the "
+                             f"printer runs axles down to {limits.min_axle_diameter:.3g} mm)")
+                break
     return ("would work: " + "; or ".join(found)) if found else \
-        "no module down to 0.6× this one, nor a link up to twice as long, works"
+        ("no module from {0:g} to {1:g} mm, no link up to 3× as long, no smaller axle works".format(*MODULE_RANGE))
 
 
 def verify_stage(stage: Stage, limits: Limits, key: str) -> list[Finding]:

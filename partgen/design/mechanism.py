@@ -22,7 +22,7 @@ from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_
 from .synthesis import Chain
 
 __all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize",
-           "TRIANGLE_BUDGET", "gear_triangles"]
+           "TRIANGLE_BUDGET", "gear_triangles", "auto_module"]
 
 TRIANGLE_BUDGET = 8_000_000  # triangles of all gear solids of a kit: about 2 GB of meshes while building
 
@@ -149,14 +149,16 @@ def pitch_diameter_belt(teeth: int, profile: BeltProfile) -> float:
     return _pd(teeth, profile.pitch)
 
 
-def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
-    """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings."""
+def synthesize(inputs: MechanismInputs, params: KitParams, advise: bool = True) -> Mechanism:
+    """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings.
+    ``advise``: a refusal computes the settings that would work (a search turns it off)."""
     links = inputs.chain.links
     if len(links) < 1:
         raise DesignError("the chain has no links", "links")
     system = params.system
     limits = Limits(params.printer.min_gear, params.min_root_diameter, inputs.tip_gap, inputs.idler_reach,
-                    gear_rules(params))
+                    gear_rules(params), params.joints.axle_diameter,
+                    max(params.printer.min_hole - params.joints.running_clearance, 0.5), advise)
     findings: list[Finding] = []
     for j, link in enumerate(links, 1):
         if link.length < params.printer.min_link - 1e-9:
@@ -190,6 +192,44 @@ def synthesize(inputs: MechanismInputs, params: KitParams) -> Mechanism:
     return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
                      inputs.chain, inputs.drawing)
+
+
+GEAR_RULES = ("tip-root", "contact-ratio", "involute", "backlash", "tip-width")  # what a module changes
+
+
+def auto_module(inputs: MechanismInputs, params: KitParams) -> tuple[Mechanism, KitParams]:
+    """``gears.module_mm: auto``: the largest module on the grid (``drivetrain.module_grid``) with which
+    the chain synthesizes and every gear and mesh meets the rules `partgen check` holds it to on this
+    printer (tip width in lines, tip-to-root, contact ratio, involute, backlash). Returns the
+    mechanism and the kit parameters at that module; DesignError on ``gears.module_mm`` when none does,
+    naming the first refusal at the largest and at the smallest module."""
+    from dataclasses import replace
+
+    from .drivetrain import MODULE_RANGE, module_grid
+
+    first: dict[float, str] = {}
+    for m in module_grid():
+        p = replace(params, system=replace(params.system, module=m))
+        try:
+            mech = synthesize(inputs, p, advise=False)
+        except DesignError as e:
+            first[m] = e.problem
+            continue
+        bad = [f for f in mech.findings if f.severity == "warn" and f.rule in GEAR_RULES]
+        if not bad:
+            return mech, p
+        first[m] = bad[0].message
+    hi, lo = max(first), min(first)
+    why = {}
+    for m in (hi, lo):  # the refusal again, now with the settings that would work
+        try:
+            synthesize(inputs, replace(params, system=replace(params.system, module=m)))
+            why[m] = first[m]
+        except DesignError as e:
+            why[m] = e.problem
+    raise DesignError(f"no module from {MODULE_RANGE[0]:g} to {MODULE_RANGE[1]:g} mm builds this chain on the printer "
+                      f"(every link must work at the same module): at {hi:g} mm: {why[hi]}; at {lo:g} mm: {why[lo]}",
+                      "gears.module_mm")
 
 
 def gear_triangles(gear: GearSpec) -> int:
@@ -262,7 +302,7 @@ def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[F
 
 def gear_rules(params: KitParams) -> GearRules:
     """The gear and mesh rules of a kit: its check settings on its printer."""
-    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.resolution)
+    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.line_width)
 
 
 def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Finding]:

@@ -11,7 +11,7 @@ contact-ratio        a mesh's transverse contact ratio is ≥ ``checks.min_conta
 involute             the mate's tip meets a gear's flank on its involute, not below its form radius
 backlash             a mesh has backlash ≥ 0 at its centre distance (to 1e-6 mm)
 tip-width            a gear's tooth tip is ≥ ``checks.min_tip_width_roads`` printer roads wide
-wall                 the material between a hole and the part's edge is ≥ the printer's min_wall_mm
+wall                 the material between a hole and the part's edge is ≥ min_wall_lines × line_width_mm
 hole                 a hole that runs on a pin or axle is ≥ the printer's min_hole_diameter_mm
 hole-to-size         a hole held to size (a press-fit D, a pen bore, a pocket) is ≥
                      min_hole_to_size_diameter_mm
@@ -42,7 +42,7 @@ class GearRules:
     """What a gear and a mesh must meet (mm).
 
     min_contact_ratio : ``checks.min_contact_ratio``.
-    min_tip_width : ``checks.min_tip_width_roads`` × the printer's resolution (road width).
+    min_tip_width : ``checks.min_tip_width_roads`` × the printer's line_width_mm.
     tip_root_coeff : least tip-to-root clearance, × module.
     """
 
@@ -173,8 +173,22 @@ def gear_breaches(g: GearSpec, rules: GearRules, name: str = "") -> list[Breach]
     tip = g.tip_thickness
     if tip < rules.min_tip_width - 1e-9:
         return [Breach("tip-width", f"{name or f'{g.teeth} teeth'}: tooth tips {tip:.3f} mm wide, under "
-                       f"{rules.min_tip_width:.3f} mm", tip, rules.min_tip_width)]
+                       f"{rules.min_tip_width:.3f} mm: use gears.module_mm ≥ {module_for_tip(g, rules.min_tip_width):.3g} "
+                       "(tips grow with the module), or fewer checks.min_tip_width_roads, or a printer with a "
+                       "narrower line", tip, rules.min_tip_width)]
     return []
+
+
+def module_for_tip(g: GearSpec, width: float) -> float:
+    """The module (mm) at which ``g``'s tooth tips are ``width`` mm wide, its teeth and profile shift
+    kept: the tip thickness is affine in the module (the backlash share is fixed in mm)."""
+    from dataclasses import replace
+
+    m = g.system.module
+    t1 = g.tip_thickness
+    t2 = replace(g, system=replace(g.system, module=2 * m)).tip_thickness
+    slope = (t2 - t1) / m
+    return m + (width - t1) / slope if slope > 0 else math.inf
 
 
 def hole_breach(diameter: float, runs: bool, min_hole: float, min_hole_to_size: float) -> Breach | None:
@@ -183,15 +197,16 @@ def hole_breach(diameter: float, runs: bool, min_hole: float, min_hole_to_size: 
     hole it holds to size."""
     if runs and diameter < min_hole - 1e-6:
         return Breach("hole", f"a hole of Ø{diameter:.2f} mm that runs on a pin is under the printer's smallest "
-                      f"reliable joint hole Ø{min_hole:g} mm", diameter, min_hole)
+                      f"reliable joint hole Ø{min_hole:g} mm (its min_hole_diameter_mm)", diameter, min_hole)
     if not runs and diameter < min_hole_to_size - 1e-6:
         return Breach("hole-to-size", f"a hole of Ø{diameter:.2f} mm is under the smallest hole the printer holds "
-                      f"to size, Ø{min_hole_to_size:g} mm", diameter, min_hole_to_size)
+                      f"to size, Ø{min_hole_to_size:g} mm (its min_hole_to_size_diameter_mm)", diameter, min_hole_to_size)
     return None
 
 
 def wall_breach(wall: float, min_wall: float) -> Breach | None:
     """A wall of ``wall`` mm against the printer's thinnest wall."""
     if wall < min_wall - 1e-6:
-        return Breach("wall", f"a wall of {wall:.2f} mm is under the printer's {min_wall:g} mm", wall, min_wall)
+        return Breach("wall", f"a wall of {wall:.2f} mm is under the printer's {min_wall:g} mm (min_wall_lines × "
+                      "line_width_mm)", wall, min_wall)
     return None

@@ -10,7 +10,7 @@ from . import report as R
 from .kit import group_parts, printed
 from .render import render
 
-__all__ = ["bill_sections"]
+__all__ = ["bill_sections", "stock_items", "shopping_list", "printed_rows"]
 
 
 def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], groups=None) -> list[tuple[str, str]]:
@@ -44,8 +44,72 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
             '<div class="parts">' + R.table(["picture", "part", "role", "count", "size mm (as printed)", "volume cm³",
                                              "mass g (solid)", "centre of mass mm (STL frame)", "gear"], rows,
                                             left=3, raw={0}) + "</div>")]
+    filament = [[p.name, len(g), round(g[0].mesh.volume * density, 1), round(len(g) * g[0].mesh.volume * density, 1)]
+                for g in groups for p in (g[0].part,)]
+    filament.append(["total", sum(r[1] for r in filament), "", round(total, 1)])
+    out.append(("Filament", "<p>Printed parts, each at full density (solid): infill below 100 % prints less.</p>"
+                + R.table(["part", "count", "g each", "g total"], filament, left=1)))
     if purchased:
-        buy = [[str(b.get("name", "")), str(b.get("role", "")),
-                ", ".join(f"{k} {v}" for k, v in b.items() if k not in ("name", "role"))] for b in purchased]
-        out.append(("Bought parts", R.table(["item", "role", "details"], buy, left=3)))
+        buy = [[q, item, size, ", ".join(used[:6]) + (" …" if len(used) > 6 else "")]
+               for item, q, size, used in stock_items(purchased)]
+        out.append(("Bought parts", R.table(["quantity", "item", "stock size", "for"], buy, left=4)))
     return out
+
+
+def _g(x) -> str:
+    return f"{float(x):.4g}"
+
+
+def stock_items(purchased: list[dict]) -> list[tuple[str, int, str, list[str]]]:
+    """What to buy, grouped: (item, quantity, stock size, the kit's names it serves), from the
+    manifest's ``purchased`` entries (belts, pins, counterweight fill: slugs and binder)."""
+    items: dict[tuple[str, str], list] = {}
+
+    def add(item: str, qty: int, size: str, name: str) -> None:
+        row = items.setdefault((item, size), [0, []])
+        row[0] += qty
+        row[1].append(name)
+
+    for b in purchased:
+        role, name = b.get("role", ""), str(b.get("name", ""))
+        if role == "belt":
+            add(f"{b.get('profile', '')} closed timing belt", 1, f"{b.get('teeth')} teeth, {_g(b.get('length_mm', 0))} mm "
+                f"pitch length, {_g(b.get('width_mm', 0))} mm wide", name)
+        elif role == "pin":
+            add(f"{b.get('material', 'steel')} pin", 1, f"Ø{_g(b['diameter_mm'])} × {float(b['length_mm']):.1f} mm", name)
+        elif isinstance(b.get("slugs"), dict):
+            sl = b["slugs"]
+            add(f"{sl.get('kind', 'slug')} slug", int(sl.get("count", 0)), f"Ø{_g(sl['diameter_mm'])} × "
+                f"{_g(sl['length_mm'])} mm", b.get("part", name))
+            if isinstance(b.get("binder"), dict):
+                add(str(b["binder"].get("name", "binder")), 1, f"{float(b['binder'].get('volume_cm3', 0)):.2f} cm³",
+                    b.get("part", name))
+        else:
+            size = ", ".join(f"{k[:-3]} {_g(v)} mm" for k, v in b.items() if k.endswith("_mm") and
+                             isinstance(v, (int, float)))
+            add(str(role or name), 1, size, name)
+    return [(item, q, size, used) for (item, size), (q, used) in items.items()]
+
+
+def printed_rows(man: dict) -> list[tuple[str, int, float, float]]:
+    """(part, count, g each, g total) of the manifest's printed parts (solid)."""
+    return [(p["name"], int(p["count"]), float(p["mass_g"]), float(p["mass_g"]) * int(p["count"])) for p in man["parts"]]
+
+
+def shopping_list(man: dict) -> str:
+    """What `build` prints as the bill: printed parts (count, filament grams each and in total, solid)
+    and bought parts (quantity, stock size)."""
+    rows = printed_rows(man)
+    material = man.get("design", {}).get("material", "")
+    total = sum(r[3] for r in rows)
+    lines = [f"print: {sum(r[1] for r in rows)} parts ({len(rows)} distinct), {total:.0f} g of {material} "
+             "filament in total (solid; infill below 100 % prints less)",
+             f"  {'part':<14}{'count':>6}{'g each':>9}{'g total':>9}"]
+    lines += [f"  {n:<14}{c:>6}{e:>9.1f}{t:>9.1f}" for n, c, e, t in rows]
+    bought = stock_items(man.get("purchased", []))
+    if bought:
+        lines.append("buy:")
+        lines += [f"  {q:>4} × {item:<34} {size}" for item, q, size, _ in bought]
+    else:
+        lines.append("buy: nothing (every part prints)")
+    return "\n".join(lines)

@@ -14,7 +14,7 @@ from shapely.geometry import MultiPolygon, Polygon
 
 from .solid import mesh_arrays
 
-__all__ = ["Slab", "section", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts"]
+__all__ = ["Slab", "section", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts", "shell_count"]
 
 
 @dataclass(frozen=True)
@@ -98,6 +98,11 @@ def from_mesh(vertices: np.ndarray, faces: np.ndarray) -> m3d.Manifold:
     if solid.status() != m3d.Error.NoError:
         raise ValueError(f"not a manifold solid: {solid.status()}")
     return solid
+
+
+def shell_count(solid: m3d.Manifold) -> int:
+    """The number of separate shells of a solid (a sealed void inside it is one more)."""
+    return len(solid.decompose())
 
 
 def empty_parts(parts) -> list:

@@ -33,6 +33,9 @@ def kinds() -> list[str]:
     return list(REGISTRY)
 
 
-def load_design(path: str | Path) -> LoadedDesign:
-    """A design file validated against its kind's schema (see ``config.loader.load_design``)."""
-    return _load_design(path, {k: m.schema for k, m in REGISTRY.items()})
+def load_design(path: str | Path, over=None) -> LoadedDesign:
+    """A design file validated against its kind's schema, with the command line's ``over``rides
+    (see ``config.loader.load_design``)."""
+    if over is None:
+        return _load_design(path, {k: m.schema for k, m in REGISTRY.items()})
+    return _load_design(path, {k: m.schema for k, m in REGISTRY.items()}, over)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, read_yaml
+from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.protocol import Motion, Trace
 from .params import BennettParams
@@ -111,9 +111,6 @@ def bill_text(man: dict, dest, seconds: float) -> str:
         lines.append(f"{r['part']:<10}{r['layer']:>6}{r['solid_g']:>9.1f}{r['printed_g']:>11.1f}"
                      + (f"{r['fill_g']:>8.1f}" if r["fill_g"] else f"{'':>8}")
                      + f"{r['support_mm2']:>13.0f}{r['bed_contact_mm2']:>12.0f}")
-    lines.append("buy:")
-    for b in d["bought"]:
-        lines.append(f"  {str(b['quantity']):>9} × {b['item']:<44} {b['mass_g']:7.1f} g  ({b['for']})")
     bal = d["balance_mm"]
     short = max(v for k, v in bal.items() if k.startswith("one_slug_short"))
     lines.append(f"centre of mass within {bal['fdm']:.4f} mm of S as printed (tolerance {d['balance_tolerance_mm']:g} "
@@ -274,10 +271,10 @@ class BennettButterfly:
 
     def kit_files(self, spec: BennettParams, kit: A.BennettKit, raw: LoadedDesign) -> dict[str, bytes]:
         """design.yaml with the chosen layout pinned (a kit folder rebuilds without a search), printer.yaml."""
-        data = read_yaml(raw.path)
+        data = raw.document()
         data["printer"] = "printer.yaml"
         data.setdefault("parts", {})["layout"] = layout_yaml(kit)
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
 
     def plate_margin(self, spec: BennettParams) -> float:
         return 5.0

@@ -42,8 +42,8 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
                           f"({parts.boss_length_mm} mm): a bar would stand proud of its boss into the next one on the pin")
     if len(set(cw.links)) != 3:
         raise ConfigError(loaded.path, "counterweights.links", "three different links")
-    if d.pin.diameter_mm + d.pin.clearance_diametral_mm >= parts.boss_diameter_mm - 2 * p.min_wall_mm:
-        raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore leaves less than the printer's {p.min_wall_mm} mm "
+    if d.pin.diameter_mm + d.pin.clearance_diametral_mm >= parts.boss_diameter_mm - 2 * p.min_wall:
+        raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore leaves less than the printer's {p.min_wall} mm "
                           f"wall in a {parts.boss_diameter_mm} mm boss")
     if d.pin.diameter_mm + d.pin.clearance_diametral_mm < p.min_hole_diameter_mm:
         raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore is below the printer's smallest reliable hole "

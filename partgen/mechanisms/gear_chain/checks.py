@@ -14,6 +14,7 @@ from ...checks.fits import check_fits
 from ...checks.meshing import check_meshes
 from ...checks.motion import prepare, sample_angles, sweep
 from .belts import check_belts
+from ...checks.bed import bed_findings
 from ...checks.printability import check_printability
 
 __all__ = ["check_kit", "printed_extents"]
@@ -53,6 +54,9 @@ def check_kit(kit: Kit, samples: int | None = None, progress=None) -> Result:
     res.add(*found)
     found, printing = check_printability(kit, geo, printed_extents(kit))
     res.add(*found)
+    found, on_bed = bed_findings(kit.parts, kit.params.printer)
+    res.add(*found)
+    printing = {**printing, **on_bed}
     found, belts = check_belts(kit)
     res.add(*found)
     if belts:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, read_yaml
+from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Result
 from ...core.protocol import Motion, Trace
@@ -149,8 +149,10 @@ class GearChain:
     def kit_files(self, spec: ChainSpec, kit: Kit, raw: LoadedDesign) -> dict[str, bytes]:
         """The design and its printer profile, as a kit folder keeps them: design.yaml names
         printer.yaml beside it."""
-        data = read_yaml(raw.path)
+        data = raw.document()
         data["printer"] = "printer.yaml"
+        if isinstance(data.get("gears"), dict) and data["gears"].get("module_mm") == "auto":
+            data["gears"]["module_mm"] = spec.params.system.module  # the module auto chose, pinned
         files = {}
         c = raw.design.curve
         if c is not None and c.drawn and (c.svg is not None or isinstance(c.points, str)):
@@ -160,7 +162,7 @@ class GearChain:
             src = curve_file(getattr(c, key), raw.path, f"curve.{key}", suffix)
             data["curve"] = {**data["curve"], key: f"curve{suffix}"}  # the kit keeps its own copy
             files[f"curve{suffix}"] = src.read_bytes()
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path)), **files}
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document()), **files}
 
     def plate_margin(self, spec: ChainSpec) -> float:
         return spec.params.checks.plate_margin
@@ -222,8 +224,6 @@ class GearChain:
         for p in parts:
             lines.append(f"{p['name']:<12}{p['role']:<11}{p['count']:>5}{p['triangles']:>11}"
                          f"{p['volume_mm3'] / 1000:>12.2f}{p['mass_g']:>9.1f}  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])}")
-        for b in man.get("purchased", []):
-            lines.append(f"buy: {b['name']} ({b['role']}" + (f", {b['teeth']} teeth" if "teeth" in b else "") + ")")
         warn = sum(f.severity == "warn" for f in mech.findings)
         if mech.drawing is not None:
             lines += tradeoff_text(mech.drawing)

@@ -14,7 +14,8 @@ from ...design import curve as curves
 from ...design import drawing
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
-from ...design.mechanism import BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, synthesize
+from ...design.mechanism import (BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, auto_module,
+                                 synthesize)
 from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
@@ -165,6 +166,20 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
                           f"the printer's smallest link ({p.min_link_length_mm:g} mm): use at least {need:.3g} mm per unit")
 
 
+def _fit(loaded: LoadedDesign, kind: str) -> float:
+    """A joint clearance (diametral, mm): as given, or ``printer``: the fit the printer's profile measured."""
+    j, p = loaded.design.joints, loaded.printer
+    value = j.running_diametral if kind == "running" else j.press_fit_diametral
+    if value != "printer":
+        return float(value)
+    measured = None if p.fits is None else getattr(p.fits, f"{kind}_clearance_diametral_mm")
+    if measured is None:
+        raise ConfigError(loaded.path, f"joints.{kind}_clearance_diametral_mm",
+                          f"'printer' takes the fit from the printer profile, but {p.name!r} ({loaded.printer_path.name}) "
+                          f"gives no fits.{kind}_clearance_diametral_mm: give a number (mm, diametral)")
+    return float(measured)
+
+
 def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     """The mechanism inputs and kit parameters of a loaded design (mm, rad)."""
     d, p = loaded.design, loaded.printer
@@ -177,7 +192,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
     _sizes(loaded, chain)
     g = d.gears
     system = ToothSystem(
-        module=g.module_mm,
+        module=1.0 if g.module_mm == "auto" else g.module_mm,  # auto: chosen in resolve_spec
         pressure_angle=math.radians(g.pressure_angle_deg),
         addendum_coeff=g.addendum_coeff,
         dedendum_coeff=g.dedendum_coeff,
@@ -206,7 +221,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
         plate_thickness=d.plates.thickness_mm,
         boss_wall=d.plates.boss_wall_mm,
         hub_wall=g.hub_wall_mm,
-        joints=Joints(j.axle_diameter_mm, j.running_diametral, j.press_fit_diametral, j.axial_gap_mm),
+        joints=Joints(j.axle_diameter_mm, _fit(loaded, "running"), _fit(loaded, "press_fit"), j.axial_gap_mm),
         base_thickness=d.base.thickness_mm,
         leg_height=d.base.leg_height_mm,
         crank_radius=d.base.crank_radius_mm,
@@ -258,8 +273,12 @@ def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
         orders = sorted(found, key=_room, reverse=True)[:24] or orders
     first = None
     for links in orders:
+        trial = replace(inputs, chain=Chain(links, inputs.chain.offset))
         try:
-            mech = synthesize(replace(inputs, chain=Chain(links, inputs.chain.offset)), params)
+            if loaded.design.gears.module_mm == "auto":
+                mech, params = auto_module(trial, params)
+            else:
+                mech = synthesize(trial, params)
             break
         except ToothSystemError as e:  # the design names the tooth system's field; this is its key
             raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None

@@ -128,7 +128,7 @@ class StageTeeth(Strict):
 
 
 class Gears(Strict):
-    module_mm: Length
+    module_mm: Length | Literal["auto"]  # auto: the largest module that builds and prints on the printer
     pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
     addendum_coeff: Annotated[float, Field(gt=0, le=2)] = 1.0
     dedendum_coeff: Annotated[float, Field(gt=0, le=2.5)] = 1.25
@@ -155,9 +155,10 @@ class Plates(Strict):
 class Joints(Strict):
     axle_diameter_mm: Length
     running_clearance_radial_mm: Finite | None = None
-    running_clearance_diametral_mm: Finite | None = None
+    # ``printer``: the fit the printer profile's maker measured (its fits.*_diametral_mm)
+    running_clearance_diametral_mm: Finite | Literal["printer"] | None = None
     press_fit_clearance_radial_mm: Finite | None = None
-    press_fit_clearance_diametral_mm: Finite | None = None
+    press_fit_clearance_diametral_mm: Finite | Literal["printer"] | None = None
     axial_gap_mm: Length = 0.5
 
     @model_validator(mode="after")

@@ -68,9 +68,9 @@ def resolve_pair(loaded: LoadedDesign) -> PairSpec:
                               e.problem) from None
     bore = d.axles.diameter_mm / 2 + d.axles.clearance_diametral_mm / 2
     for i, gear in enumerate((g1, g2)):
-        if bore + p.min_wall_mm >= gear.root_radius:
+        if bore + p.min_wall >= gear.root_radius:
             raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"a {gear.teeth}-tooth gear's root circle "
-                              f"(Ø{2 * gear.root_radius:.2f} mm) leaves less than the printer's {p.min_wall_mm:g} mm wall "
+                              f"(Ø{2 * gear.root_radius:.2f} mm) leaves less than the printer's {p.min_wall:g} mm wall "
                               f"around its Ø{2 * bore:.2f} mm bore: more teeth, a larger module or a thinner axle")
     if 2 * bore < p.min_hole_diameter_mm:
         raise ConfigError(loaded.path, "axles.diameter_mm", f"the bore (Ø{2 * bore:.2f} mm) is below the printer's "

@@ -12,7 +12,7 @@ import shapely
 from shapely import affinity
 from shapely.geometry import box
 
-from ...config.loader import LoadedDesign, read_yaml
+from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
 from ...core.protocol import Motion, Trace
@@ -98,9 +98,9 @@ class GearPair:
                 "printer": spec.printer.name, "material": spec.material, "density_g_cm3": r6(spec.density * 1000)}
 
     def kit_files(self, spec: PairSpec, kit: PairKit, raw: LoadedDesign) -> dict[str, bytes]:
-        data = read_yaml(raw.path)
+        data = raw.document()
         data["printer"] = "printer.yaml"
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
 
     def plate_margin(self, spec: PairSpec) -> float:
         return spec.plate_margin
@@ -143,6 +143,11 @@ class GearPair:
                                         "designed": 2 * spec.gear1.system.backlash_per_gear},
                            transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
                            max_overlap_mm2=float(play["overlap_mm2"].max()), radial_gap_mm=float(radial))
+        from ...checks.bed import bed_findings
+
+        found, on_bed = bed_findings(kit.parts, kit.printer)
+        res.add(*found)
+        res.figures["printability"] = on_bed
         return res
 
     def trace(self, spec: PairSpec, kit: PairKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:

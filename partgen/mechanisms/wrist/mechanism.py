@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, read_yaml
+from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Result
 from ...core.protocol import Motion, Trace
@@ -62,9 +62,9 @@ class Wrist:
                 "centre_distance_mm": spec.A, "longitudinal_pitch_mm": spec.long_pitch, **kit.figures}
 
     def kit_files(self, spec: WristSpec, kit: WristKit, raw: LoadedDesign) -> dict[str, bytes]:
-        data = read_yaml(raw.path)
+        data = raw.document()
         data["printer"] = "printer.yaml"
-        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(read_yaml(raw.printer_path))}
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
 
     def plate_margin(self, spec: WristSpec) -> float:
         return 5.0
@@ -72,7 +72,13 @@ class Wrist:
     def check(self, spec: WristSpec, kit: WristKit, samples: int | None = None, progress=None) -> Result:
         from .checks import check_wrist
 
-        return check_wrist(kit, progress=progress)
+        from ...checks.bed import bed_findings
+
+        res = check_wrist(kit, progress=progress)
+        found, on_bed = bed_findings(kit.parts, kit.printer)
+        res.add(*found)
+        res.figures["printability"] = on_bed
+        return res
 
     def trace(self, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """The ratio i(θ) and the mating angle φ(θ) over the valid range, the tooth rows; wrist.png/.svg."""

@@ -26,7 +26,7 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
                           f"at least {w.centre_distance_mm * need / r_min:.1f} mm")
     # a dome tooth is the cap of a ball standing height_mm proud of the pitch surface: it must be
     # rooted in the surface on a footprint the printer can lay down (diameter 2·sqrt(h(2r − h)))
-    r, h, wall = w.tooth.radius_mm, w.tooth.height_mm, p.min_wall_mm
+    r, h, wall = w.tooth.radius_mm, w.tooth.height_mm, p.min_wall
     key = "wrist.tooth.radius_mm" if r < wall / 2 else "wrist.tooth.height_mm"  # blame the absurd one
     if h >= 2 * r:
         raise ConfigError(loaded.path, key, f"a dome of radius {r:g} mm cannot stand {h:g} mm proud (its diameter is "
