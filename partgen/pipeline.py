@@ -72,6 +72,9 @@ def overrides(sets=(), printer: str | None = None) -> Overrides:
 def _raw(target, over: Overrides | None = None) -> tuple[LoadedDesign, Path | None]:
     target = Path(target)
     kit_dir = target if target.is_dir() else None
+    if kit_dir is not None and not (kit_dir / "design.yaml").is_file():
+        raise ConfigError(target, "", "a folder that is not a kit (it has no design.yaml): give a design file, or a "
+                          "kit folder partgen wrote")
     return load_design(target / "design.yaml" if kit_dir else target, over), kit_dir
 
 

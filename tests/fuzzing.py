@@ -151,9 +151,9 @@ def worker(configs: list[Path], seed: int, budget: float, case_seconds: float, l
             folder.mkdir()
             path = folder / cfg.name
             path.write_text(dump(t), encoding="utf-8")
-            for side in cfg.parent.glob("*"):
-                if side.is_dir() and not (folder / side.name).exists():
-                    os.symlink(side.resolve(), folder / side.name)
+            for side in cfg.parent.glob("*"):  # the design's data (drawings/), copied: a design reads
+                if side.is_dir() and not (folder / side.name).exists():  # only files inside its folder
+                    shutil.copytree(side, folder / side.name)
             out = folder / "out"
             out.mkdir()
             print(json.dumps({"i": i, "config": cfg.name, "kind": kind, "key": key, "start": True}), flush=True)

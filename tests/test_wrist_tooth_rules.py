@@ -46,3 +46,15 @@ def test_the_footprint_rule_is_the_balls_section_by_the_surface():
     below = 50.0 - c[2]  # the plane z = 50 cuts the ball at this height above its centre
     measured = 2 * math.sqrt(r * r - below * below)
     assert measured == pytest.approx(2 * math.sqrt(h * (2 * r - h)), rel=1e-9)
+
+
+@pytest.mark.parametrize("bend", [0.011, 2.0])
+def test_a_bend_too_small_for_a_sound_socket_sweep_is_refused(tmp_path, capsys, bend):
+    """2° made gear2's swept sockets edges shared by four faces (exit 3); 10° builds."""
+    d = yaml.safe_load(open("configs/wrist_quasi_ellipsoid.yaml"))
+    d["wrist"]["max_bend_deg"] = bend
+    p = tmp_path / "w.yaml"
+    p.write_text(yaml.safe_dump(d))
+    assert main(["build", str(p), "-o", str(tmp_path / "kit"), "-q"]) == 2
+    assert "wrist.max_bend_deg:" in capsys.readouterr().err
+    assert not (tmp_path / "kit").exists()

@@ -12,6 +12,8 @@ from ...config.loader import LoadedDesign, printer_limits
 
 __all__ = ["resolve_wrist"]
 
+MIN_BEND_DEG = 10.0  # degrees: the least workspace bend partgen builds sockets for (see resolve_wrist)
+
 
 def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
     d, w, p = loaded.design, loaded.design.wrist, loaded.printer
@@ -39,6 +41,11 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
                           f"a dome of radius {r:g} mm standing {h:g} mm proud meets the surface on a circle of "
                           f"Ø{foot:.3f} mm, under the printer's {wall:g} mm wall: use a radius of at least {r_min:.2f} mm"
                           + (f" or a height of at least {h_min:.2f} mm" if math.isfinite(h_min) else ""))
+    # gear 2's sockets are the sweep of gear 1's teeth over the bends; under 10° its poses nearly
+    # coincide and the swept sockets are not a sound solid (2° left gear2 with edges of four faces)
+    if w.max_bend_deg < MIN_BEND_DEG:
+        raise ConfigError(loaded.path, "wrist.max_bend_deg", f"{w.max_bend_deg:g}° is under the {MIN_BEND_DEG:g}° "
+                          "partgen builds a wrist for (a pair that bends less needs no spherical gears)")
     reach = max(p.build_envelope_mm)
     if w.centre_distance_mm > 2 * reach:
         raise ConfigError(loaded.path, "wrist.centre_distance_mm", f"{w.centre_distance_mm:g} mm makes gears larger than "
