@@ -13,7 +13,7 @@ from .findings import Result
 from .parts import Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "Mechanism", "Motion", "Trace", "Section"]
+__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section"]
 
 
 @runtime_checkable
@@ -34,6 +34,27 @@ class Kit(Protocol):
     def poses(self, t: float = 0.0) -> dict[str, np.ndarray]:
         """name -> (4, 4) world-from-local pose of every part at motion parameter ``t``."""
         ...
+
+
+class ParamsKit:
+    """The Kit protocol's name, printer, density and material, read from the kit's ``params``
+    (a base for a mechanism's kit dataclass that keeps its parameters as ``params``)."""
+
+    @property
+    def name(self) -> str:
+        return self.params.name
+
+    @property
+    def printer(self) -> PrinterLimits:
+        return self.params.printer
+
+    @property
+    def density(self) -> float:
+        return self.params.density
+
+    @property
+    def material(self) -> str:
+        return self.params.material
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...core.protocol import ParamsKit
 from ...core.transforms import frame_z
 from ...design import bennett_butterfly as bbf
 from .params import BennettParams
@@ -78,7 +79,7 @@ class _Built:
 
 
 @dataclass(frozen=True)
-class BennettKit:
+class BennettKit(ParamsKit):
     params: BennettParams
     layout: Layout
     parts: tuple[Part, ...]
@@ -92,22 +93,6 @@ class BennettKit:
     printing: dict[str, PrintPose]  # printed part name -> how it prints
     base_mass: LinkMass
     figures: dict = field(default_factory=dict)
-
-    @property
-    def name(self) -> str:
-        return self.params.name
-
-    @property
-    def printer(self):
-        return self.params.printer
-
-    @property
-    def density(self) -> float:
-        return self.params.density
-
-    @property
-    def material(self) -> str:
-        return self.params.material
 
     def printed_mass(self, name: str) -> float | None:
         """Grams of a printed part as printed (the FDM shell-and-infill model)."""

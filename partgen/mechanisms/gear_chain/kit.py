@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
 from ...design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
@@ -72,7 +73,7 @@ class Contact:
 
 
 @dataclass(frozen=True)
-class Kit:
+class Kit(ParamsKit):
     """Parts of a mechanism, and where each one is at any crank angle."""
 
     mechanism: Mechanism
@@ -82,22 +83,6 @@ class Kit:
     static: dict = field(default_factory=dict)  # name -> (4, 4) pose of parts fixed to the base
     clock: dict = field(default_factory=dict)
     contacts: tuple[Contact, ...] = ()
-
-    @property
-    def name(self) -> str:
-        return self.params.name
-
-    @property
-    def printer(self):
-        return self.params.printer
-
-    @property
-    def density(self) -> float:
-        return self.params.density
-
-    @property
-    def material(self) -> str:
-        return self.params.material
 
     def part(self, name: str) -> Part:
         return next(p for p in self.parts if p.name == name)

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from shapely.geometry import box
 
+from ...core.protocol import ParamsKit
 from ...design import spherical as sph
 from .spec import WristSpec
 from ...geometry import wrist as W
@@ -31,7 +32,7 @@ class WristParams:
 
 
 @dataclass(frozen=True)
-class WristKit:
+class WristKit(ParamsKit):
     spec: WristSpec
     pair: sph.WristPair
     parts: tuple[Part, ...]
@@ -39,22 +40,6 @@ class WristKit:
     theta_max: float
     params: WristParams
     figures: dict = field(default_factory=dict)
-
-    @property
-    def name(self) -> str:
-        return self.params.name
-
-    @property
-    def printer(self):
-        return self.params.printer
-
-    @property
-    def density(self) -> float:
-        return self.params.density
-
-    @property
-    def material(self) -> str:
-        return self.params.material
 
     def pose2(self, theta: float, psi: float) -> np.ndarray:
         """(4, 4) pose of gear 2 for a bend (θ, ψ); gear 1 stays at the origin."""
