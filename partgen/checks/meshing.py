@@ -56,6 +56,9 @@ class _Pair:
         return window, shapely.intersection(place2d(self.oa, Ta), window)
 
 
+PLAY_RESOLUTION = 1e-7  # mm of arc at gear b's tip: the bisection's last step
+
+
 def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
     """How far gear b turns (rad, ``direction`` ±1) about its centre before it touches a."""
     pitch = 2 * math.pi / pair.gb.teeth
@@ -64,7 +67,8 @@ def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
     near = pair.near(Ta, Tb)  # b turns about its own centre: the window and a's clipped outline hold
     if pair.overlap(Ta, Tb, near)[0] > 1e-9:
         return 0.0
-    for _ in range(40):
+    reach = pair.gb.tip_radius
+    while (hi - lo) * reach > PLAY_RESOLUTION:
         mid = (lo + hi) / 2
         if pair.overlap(Ta, turn_about(Tb, (0.0, 0.0, 1.0), (cb[0], cb[1], 0.0), direction * mid), near)[0] > 1e-9:
             hi = mid
