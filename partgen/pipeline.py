@@ -92,10 +92,15 @@ def load(target, raw: LoadedDesign | None = None, over: Overrides | None = None)
 _KITS: dict = {}  # one built kit per process: (design bytes, printer bytes) -> kit
 
 
+def kit_key(loaded: Loaded) -> tuple:
+    """What a kit is built from: the kind, the resolved design and printer documents."""
+    return loaded.mechanism.kind, dump_yaml(loaded.raw.document()), dump_yaml(loaded.raw.printer_document())
+
+
 def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
     """The kit of a loaded design, built once per process (check, trace and report share it);
     ``fresh``: build it anew (what `build` writes is always built by this call)."""
-    key = (loaded.mechanism.kind, dump_yaml(loaded.raw.document()), dump_yaml(loaded.raw.printer_document()))
+    key = kit_key(loaded)
     if fresh or key not in _KITS:
         try:
             kit = loaded.mechanism.build(loaded.spec, progress)

@@ -62,7 +62,6 @@ def prime_kit_cache():
         if isinstance(built, pipeline.Built):
             assert loaded.path.read_bytes() == built.loaded.path.read_bytes(), "not the design it was built from"
         assert loaded.kit_dir is None, "a kit folder's check must rebuild from its own design.yaml"
-        key = (loaded.mechanism.kind, loaded.path.read_bytes(), loaded.raw.printer_path.read_bytes())
         pipeline._KITS.clear()
-        pipeline._KITS[key] = kit
+        pipeline._KITS[pipeline.kit_key(loaded)] = kit
     return prime
