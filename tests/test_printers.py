@@ -249,3 +249,19 @@ def test_version_and_python_m():
     assert got.returncode == 0 and "--printer NAME|FILE" in got.stdout and "--set KEY=VALUE" in got.stdout
     got = subprocess.run([sys.executable, "-m", "partgen", "bild"], capture_output=True, text=True, timeout=60)
     assert got.returncode == 2
+
+
+def test_default_design_on_a_220mm_printer_packs_b1_and_fails_only_on_tip_width():
+    """#12: the default chain on the Ender 3 V3: its module 1.25 leaves tooth tips under three
+    0.45 mm lines, so auto keeps the sound gears and every failure is the tip-width rule (naming
+    the module that prints), while the 230 mm link B1 goes on the diagonal of the 220 mm bed."""
+    from partgen.pipeline import check
+
+    _, kit, result, _ = check(CONFIGS / "butterfly.yaml", samples=8, write_plates=False, over=overrides((), "ender3_v3"))
+    assert max(p.solid.bounding_box()[3] - p.solid.bounding_box()[0] for p in kit.parts if p.name == "B1") > 220
+    assert result.figures.get("plates", 0) >= 1
+    fails = [f for f in result.findings if f.severity in ("fail", "warn")]
+    assert fails and all(f.rule == "tip-width" or "tooth tips" in f.message for f in fails), \
+        [f.message for f in fails if f.rule != "tip-width"][:5]
+    assert all("gears.module_mm ≥" in f.message for f in fails)
+    assert not [f for f in result.findings if "does not fit" in f.message]

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from fractions import Fraction
 from typing import Sequence
@@ -219,6 +219,9 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
     return best, zmin, turned
 
 
+PRINTER_RULES = {"tip-width"}  # rules of the printer, not of the gears: auto builds past them, with a warning
+
+
 def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, limits: Limits) -> Stage:
     """``teeth: auto`` for one stage: T_D/T_G equal to the Eq 11 ratio exactly, Eq 12 and the idler's
     reach met with the margins of ``limits``, every gear at least the printable minimum, and every
@@ -228,10 +231,17 @@ def choose_stage(j: int, length: float, ratio: Fraction, system: ToothSystem, li
     Among feasible choices, the one with the smallest largest gear (then the fewest teeth) wins:
     it keeps plates and gears small. (On the paper's link 1 this objective without margins gives
     exactly the paper's 80/80/40.) When the smallest idler that reaches breaks a rule, larger ones
-    are tried. Raises DesignError when no integers work, naming the rules that turned candidates
-    away and settings that would work.
+    are tried. When only the printer's rules (``PRINTER_RULES``: tips under its lines) turn every
+    candidate away, the best sound gears are chosen anyway and the caller warns (``stage_breaches``).
+    Raises DesignError when no integers work, naming the rules that turned candidates away and
+    settings that would work.
     """
     best, zmin, turned = _search(length, ratio, system, limits)
+    if best is None and turned and set(turned) <= PRINTER_RULES:
+        # only the printer's rules (tips under its lines) turned the candidates away: the gears are
+        # sound, so the best of them is built and the caller warns (``stage_breaches``) with the rule
+        # and the module that prints; the gears' own rules and Eq 11–13 are never given up
+        best = _search(length, ratio, system, replace(limits, rules=replace(limits.rules, min_tip_width=0.0)))[0]
     if best is None:
         counts = ", ".join(f"{r} × {n}" for r, n in turned.most_common())
         why = f"; the teeth that met them broke rules `partgen check` holds the kit to ({counts})" if turned else ""

@@ -16,7 +16,8 @@ from .belt import BeltProfile, BeltStage, design_belt_stage
 from .belt import pitch_diameter as _pd
 from .curve import FourierCurve
 from .drawing import Drawing
-from .drivetrain import Finding, design_finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, verify_stage
+from .drivetrain import (Finding, design_finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, stage_breaches,
+                         verify_stage)
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
@@ -171,7 +172,10 @@ def synthesize(inputs: MechanismInputs, params: KitParams, advise: bool = True) 
         return _belt_mechanism(inputs, params, ratios, findings)
     if inputs.teeth is None:
         for j, (link, r) in enumerate(zip(links, ratios), 1):
-            stages.append(choose_stage(j, link.length, r, system, limits))
+            st = choose_stage(j, link.length, r, system, limits)
+            stages.append(st)
+            findings += [design_finding("warn", b.rule, f"link {j}: {b.message}", "gears.module_mm")
+                         for b in stage_breaches(st.D, st.M, st.G, limits.rules)]  # what auto gave up: tip width
     else:
         if len(inputs.teeth) != len(ratios):
             raise DesignError(f"{len(inputs.teeth)} stages of teeth given for {len(links)} links: "
