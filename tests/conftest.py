@@ -1,4 +1,5 @@
-"""Shared fixtures: each kit is built once per test session."""
+"""Shared fixtures: each kit is built once per test session (per xdist worker), and the test
+files that share an expensive kit run on one worker (``SHARED``, with ``--dist loadgroup``)."""
 
 import shutil
 from pathlib import Path
@@ -18,21 +19,17 @@ def built_kits(kit_of):
 
 
 @pytest.fixture(scope="session")
-def shipped_kits(kit_of):
-    """name -> (Loaded, Kit, manifest dict, kit folder) for every shipped config (configs/*.yaml)."""
-    return {cfg.stem: kit_of(cfg.stem) for cfg in sorted(CONFIGS.glob("*.yaml"))}
-
-
-@pytest.fixture(scope="session")
 def kit_of(tmp_path_factory):
-    """``kit_of(name)`` -> Built (loaded, kit, manifest, dest) of configs/<name>.yaml, built in-process
+    """``kit_of(name)`` -> Built (loaded, kit, manifest, dest) of configs/<name>.yaml (or of
+    <name>.yaml from the project's root when ``name`` has a slash: ``tests/designs/…``), built in-process
     once per test session (per xdist worker) on first use. The folder is shared: read it, never
     write into it (use ``kit_copy`` for a folder a test may change)."""
     cache = {}
 
     def get(name: str) -> pipeline.Built:
         if name not in cache:
-            cache[name] = pipeline.build(CONFIGS / f"{name}.yaml", tmp_path_factory.mktemp("kit_of") / name)
+            cfg = ROOT / f"{name}.yaml" if "/" in name else CONFIGS / f"{name}.yaml"  # "tests/designs/x": a test design
+            cache[name] = pipeline.build(cfg, tmp_path_factory.mktemp("kit_of") / Path(name).name)
         return cache[name]
     return get
 
@@ -65,3 +62,28 @@ def prime_kit_cache():
         pipeline._KITS.clear()
         pipeline._KITS[pipeline.kit_key(loaded)] = kit
     return prime
+
+
+# Test files (or single tests) that share an expensive kit, and so one worker: with
+# ``pytest -n auto --dist loadgroup`` every test runs in its file's group (like ``--dist loadfile``)
+# except these, which join the named group and reuse its worker's session kits (``kit_of``).
+SHARED = {
+    "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_sphere]": "test_wrist.py",
+    "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_quasi_ellipsoid]": "test_wrist.py",
+    "test_bennett_kit.py": "test_bennett_cli.py",  # tests/designs/bennett_fixed
+}
+# The groups that take longest run first, so the two workers end together.
+FIRST = ("test_wrist.py", "test_bennett_cli.py", "test_sweep.py", "test_check.py", "test_manifest_schema.py")
+
+
+def _group(item) -> str:
+    file = item.nodeid.split("::", 1)[0].rsplit("/", 1)[-1]
+    here = item.nodeid.rsplit("/", 1)[-1]
+    return SHARED.get(here, SHARED.get(file, file))
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        item.add_marker(pytest.mark.xdist_group(_group(item)))
+    rank = {g: i for i, g in enumerate(FIRST)}
+    items.sort(key=lambda it: rank.get(_group(it), len(FIRST)))  # stable: a file's tests keep their order

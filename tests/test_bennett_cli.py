@@ -21,13 +21,10 @@ FIXED = ROOT / "tests" / "designs" / "bennett_fixed.yaml"
 
 
 @pytest.fixture(scope="module")
-def built_fixed(tmp_path_factory):
-    """(kit folder, kit) of `partgen build FIXED`: the kit is the one build made (make_kit's)."""
-    from partgen import pipeline
-    out = tmp_path_factory.mktemp("bennett") / "kit"
-    assert main(["build", str(FIXED), "-o", str(out), "-q"]) == 0
-    (kit,) = pipeline._KITS.values()
-    return out, kit
+def built_fixed(kit_of):
+    """(kit folder, kit) of `build FIXED`, the session's (tests/test_bennett_kit.py shares it)."""
+    b = kit_of("tests/designs/bennett_fixed")
+    return b.dest, b.kit
 
 
 @pytest.fixture(scope="module")

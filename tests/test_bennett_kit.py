@@ -27,8 +27,11 @@ CFG = "tests/designs/bennett_fixed.yaml"
 
 
 @pytest.fixture(scope="module")
-def kit():
-    return A.build_bennett(resolve_bennett(load_design(CFG)))
+def kit(kit_of):
+    """The kit of CFG as `build` makes it, the session's (tests/test_bennett_cli.py shares it)."""
+    b = kit_of(CFG.removesuffix(".yaml"))
+    assert b.loaded.spec == resolve_bennett(load_design(CFG))
+    return b.kit
 
 
 @pytest.fixture(scope="module")

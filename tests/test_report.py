@@ -20,8 +20,12 @@ PROBE = """<script>window.addEventListener('load', () => {
 
 
 @pytest.fixture(scope="module")
-def page(tmp_path_factory):
+def page(tmp_path_factory, kit_of):
     out = tmp_path_factory.mktemp("report")
+    from partgen import pipeline
+    b = kit_of("butterfly")  # the report's kit is the session's build of the same design
+    pipeline._KITS.clear()
+    pipeline._KITS[pipeline.kit_key(b.loaded)] = b.kit
     assert main(["report", str(ROOT / "configs" / "butterfly.yaml"), "-o", str(out), "--samples", "24"]) == 0
     return out / "index.html"
 

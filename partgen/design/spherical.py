@@ -22,6 +22,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from functools import lru_cache
+
 import numpy as np
 
 from ..core.transforms import rot_axis
@@ -89,7 +91,7 @@ def ratio_ode(theta_end: float, I: float, steps: int = 2000) -> tuple[np.ndarray
 def mating_angle_meridian(theta, I: float, nodes: int = 64) -> np.ndarray:
     """φ = ∫₀^θ i dθ (equal arcs along the meridians), by Gauss–Legendre quadrature of i."""
     t = np.atleast_1d(_check(theta, I))
-    x, w = np.polynomial.legendre.leggauss(nodes)
+    x, w = _gauss_legendre(nodes)
     out = np.empty_like(t)
     for k, tk in enumerate(t):
         s = tk / 2 * (x + 1)
@@ -139,11 +141,19 @@ def gear2_pose(theta: float, psi: float, I: float, A: float) -> np.ndarray:
     return T
 
 
+@lru_cache(maxsize=8)
+def _gauss_legendre(nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights on [-1, 1] (an eigenvalue problem: computed once per n)."""
+    x, w = np.polynomial.legendre.leggauss(nodes)
+    x.flags.writeable = w.flags.writeable = False
+    return x, w
+
+
 def meridian_arc(theta, I: float, A: float, gear: int = 1, nodes: int = 64) -> np.ndarray:
     """Arc length (mm) along a meridian from the pole to polar angle θ on gear 1 (gear = 1), or to
     its mate φ(θ) on gear 2 (gear = 2): ∫ √(r² + (dr/dα)²) dα."""
     t = np.atleast_1d(_check(theta, I))
-    x, w = np.polynomial.legendre.leggauss(nodes)
+    x, w = _gauss_legendre(nodes)
     out = np.empty_like(t)
     for k, tk in enumerate(t):
         s = tk / 2 * (x + 1)
