@@ -31,6 +31,8 @@ import argparse
 import collections
 import copy
 import json
+import shutil
+import signal
 import sys
 import tempfile
 import time
@@ -264,29 +266,32 @@ def main(argv=None) -> int:
     mechs = MECHANISMS if args.mechanism == "all" else (args.mechanism,)
     outcomes: list[Outcome] = []
     t0 = time.perf_counter()
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # a stopped run reports what it finished
     with tempfile.TemporaryDirectory(prefix="partgen-sweep-") as tmp:
-        for mech in mechs:
-            built = 0
-            for k, d in enumerate(designs(mech, args.start + args.designs, args.seed)[args.start:]):
-                work = Path(tmp) / d["name"]
-                work.mkdir()
-                check = args.check_every > 0 and mech == "chain" and built % args.check_every == 0
-                o = run_one(mech, d, work, check, args.samples)
-                built += o.status == "built"
-                outcomes.append(o)
-                import shutil
-                shutil.rmtree(work, ignore_errors=True)
-                mark = {"built": ".", "refused": "r", "crashed": "C", "bad_mesh": "M"}[o.status]
-                if o.status == "built" and any(not w for _, w in o.fails):
-                    mark = "F"
-                print(mark, end="", file=sys.stderr, flush=True)
-                if args.verbose and (o.status in ("crashed", "bad_mesh") or any(not w for _, w in o.fails)):
-                    print(f"\n{o.name} {o.status}: {o.detail[:600]} "
-                          f"{[m for (r, w), m in zip(o.fails, o.messages) if not w][:6]}\n"
-                          f"  {json.dumps(o.design.get('gears') or o.design.get('wrist') or o.design.get('parts'))}\n"
-                          f"  {json.dumps(o.design.get('joints', {}))} {json.dumps(o.design.get('plates', {}))} "
-                          f"{json.dumps(o.design.get('curve', {}).get('scale_mm_per_unit'))}", file=sys.stderr)
-            print(file=sys.stderr)
+        try:
+            for mech in mechs:
+                built = 0
+                for k, d in enumerate(designs(mech, args.start + args.designs, args.seed)[args.start:]):
+                    work = Path(tmp) / d["name"]
+                    work.mkdir()
+                    check = args.check_every > 0 and mech == "chain" and built % args.check_every == 0
+                    o = run_one(mech, d, work, check, args.samples)
+                    built += o.status == "built"
+                    outcomes.append(o)
+                    shutil.rmtree(work, ignore_errors=True)
+                    mark = {"built": ".", "refused": "r", "crashed": "C", "bad_mesh": "M"}[o.status]
+                    if o.status == "built" and any(not w for _, w in o.fails):
+                        mark = "F"
+                    print(mark, end="", file=sys.stderr, flush=True)
+                    if args.verbose and (o.status in ("crashed", "bad_mesh") or any(not w for _, w in o.fails)):
+                        print(f"\n{o.name} {o.status}: {o.detail[:600]} "
+                              f"{[m for (r, w), m in zip(o.fails, o.messages) if not w][:6]}\n"
+                              f"  {json.dumps(o.design.get('gears') or o.design.get('wrist') or o.design.get('parts'))}\n"
+                              f"  {json.dumps(o.design.get('joints', {}))} {json.dumps(o.design.get('plates', {}))} "
+                              f"{json.dumps(o.design.get('curve', {}).get('scale_mm_per_unit'))}", file=sys.stderr)
+                print(file=sys.stderr)
+        except KeyboardInterrupt:
+            print(f"\ninterrupted: the counts below are of the {len(outcomes)} designs finished", file=sys.stderr)
     summary = summarize(outcomes)
     print(f"seed {args.seed}, designs {args.start}..{args.start + args.designs - 1} per mechanism, "
           f"{time.perf_counter() - t0:.0f} s")
