@@ -18,8 +18,9 @@ from .config.yamlio import dump_yaml
 from .core.findings import Finding, Result
 from .core.protocol import Kit, Mechanism, Trace
 from .errors import ConfigError, DesignError
-from .export.kit import atomic_dir, group_parts, printed, write_kit
+from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output
+from .export.prints import plan_plates, printed_groups, stale_files, write_plate_files
 from .mechanisms import REGISTRY, load_design
 
 __all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
@@ -136,58 +137,10 @@ def build(path, dest=None, progress=None, notify=None, over: Overrides | None = 
     return Built(loaded, kit, man, claim.dest)
 
 
-_GROUPS: dict = {}  # id(kit) -> its printed parts grouped (one kit at a time)
-
-
-def printed_groups(kit: Kit):
-    """The kit's printed parts laid on the plate and grouped by identical STL, made once per kit."""
-    if id(kit) not in _GROUPS:
-        done: dict = {}
-        items = []
-        for p in (p for p in kit.parts if p.printed):
-            key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
-            if key not in done:
-                done[key] = printed(p)
-            items.append(done[key].__class__(p, done[key].stl, done[key].mesh, done[key].local_from_print))
-        _GROUPS.clear()
-        _GROUPS[id(kit)] = (kit, group_parts(items))
-    return _GROUPS[id(kit)][1]
-
-
-def stale_files(kit: Kit, kit_dir: Path) -> list[str]:
-    """The STLs of ``kit_dir`` missing or different (byte for byte) from what the design builds."""
-    groups = printed_groups(kit)
-    return [f"{g[0].part.name}.stl" for g in groups if not (kit_dir / f"{g[0].part.name}.stl").is_file()
-            or (kit_dir / f"{g[0].part.name}.stl").read_bytes() != g[0].stl]
-
-
-def plan_plates(loaded: Loaded, kit: Kit, result: Result):
-    """Pack the printed parts on build plates; a finding if one cannot fit. Returns the layout (or
-    None), the meshes by name and a function that draws the layout to a PNG path."""
-    from .export.plates import footprint, layout, plate_picture
-
-    groups = printed_groups(kit)
-    env, margin = kit.printer.envelope, loaded.mechanism.plate_margin(loaded.spec)
-    meshes = {g[0].part.name: g[0].mesh for g in groups}
-    try:
-        lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
-    except ValueError as e:
-        result.add(Finding("printability", "fail", f"build plates: {e}", getattr(e, "parts", ())))
-        return None, meshes, None
-    result.figures["plates"] = len(lay.plates)
-
-    def picture(path):
-        plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, path,
-                      f"{kit.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
-    return lay, meshes, picture
-
-
 def check(target, samples: int | None = None, progress=None, plates_dir=None, write_plates: bool = True,
           notify=None, over: Overrides | None = None) -> Checked:
     """Check a design (CONFIG) or a built kit (KITDIR: its STLs compared byte for byte with what its
     design.yaml builds). Lays the parts out on build plates and writes a 3MF per plate and a picture."""
-    from .export.plates import plate_3mf
-
     raw, kit_dir = _raw(target, over)
     claim = None
     if write_plates:
@@ -202,18 +155,12 @@ def check(target, samples: int | None = None, progress=None, plates_dir=None, wr
             result.add(Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its "
                                f"design.yaml builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
                                tuple(s[:-4] for s in stale)))
-    lay, meshes, picture = plan_plates(loaded, kit, result)
-    folder = None
-    if lay is not None and claim is not None:
-        folder = claim.dest
-        with atomic_dir(claim) as tmp:
-            pr, n = kit.printer, len(lay.plates)
-            for i, plate in enumerate(lay.plates, 1):
-                (tmp / f"plate{i}.3mf").write_bytes(plate_3mf(plate, meshes, kit.name, kit.material,
-                                                              f"build plate {i} of {n} for the {pr.name} "
-                                                              f"({lay.size[0]:g} x {lay.size[1]:g} mm)"))
-            picture(tmp / "plates.png")
-    return Checked(loaded, kit, result, folder)
+    lay, meshes, picture = plan_plates(kit, loaded.mechanism.plate_margin(loaded.spec), result)
+    if lay is None or claim is None:
+        return Checked(loaded, kit, result, None)
+    with atomic_dir(claim) as tmp:
+        write_plate_files(tmp, kit, lay, meshes, picture)
+    return Checked(loaded, kit, result, claim.dest)
 
 
 def trace(target, samples: int | None = None, plots_dir=None, animate: bool = True,
@@ -256,7 +203,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
         say("trace")
         tr = mech.trace(spec, kit, None, tmp, True)
         files = {name: (tmp / name).read_bytes() for name in tr.files}
-        _, _, picture = plan_plates(loaded, kit, result)
+        _, _, picture = plan_plates(kit, mech.plate_margin(spec), result)
         plates_png = None
         if picture is not None:
             picture(tmp / "plates.png")

@@ -72,7 +72,8 @@ def test_stock_items_groups_pins_and_fill():
 
 
 def test_report_shows_filament_and_bought_parts():
-    from partgen.pipeline import load, make_kit, printed_groups
+    from partgen.pipeline import load, make_kit
+    from partgen.export.prints import printed_groups
 
     loaded = load(CONFIGS / "gear_pair.yaml")
     kit = make_kit(loaded)

@@ -1,0 +1,70 @@
+"""What a kit prints: its printed parts grouped by identical STL (made once per kit and shared by
+check, report and the bill), the STLs of a kit folder that differ from them, and the build plates
+(layout, 3MF per plate, picture). Knows only the Kit protocol."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..core.findings import Finding, Result
+from ..core.protocol import Kit
+from .kit import PrintedPart, group_parts, printed
+
+__all__ = ["printed_groups", "stale_files", "plan_plates", "write_plate_files"]
+
+_GROUPS: dict = {}  # id(kit) -> (kit, its printed parts grouped): one kit at a time
+
+
+def printed_groups(kit: Kit) -> list[list[PrintedPart]]:
+    """The kit's printed parts laid on the plate and grouped by identical STL, made once per kit."""
+    if id(kit) not in _GROUPS or _GROUPS[id(kit)][0] is not kit:
+        done: dict = {}
+        items = []
+        for p in (p for p in kit.parts if p.printed):
+            key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
+            if key not in done:
+                done[key] = printed(p)
+            items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
+        _GROUPS.clear()
+        _GROUPS[id(kit)] = (kit, group_parts(items))
+    return _GROUPS[id(kit)][1]
+
+
+def stale_files(kit: Kit, kit_dir: Path) -> list[str]:
+    """The STLs of ``kit_dir`` missing or different (byte for byte) from what the kit prints."""
+    return [f"{g[0].part.name}.stl" for g in printed_groups(kit) if not (kit_dir / f"{g[0].part.name}.stl").is_file()
+            or (kit_dir / f"{g[0].part.name}.stl").read_bytes() != g[0].stl]
+
+
+def plan_plates(kit: Kit, margin: float, result: Result):
+    """Pack the printed parts on build plates (``margin`` mm between them); a finding in ``result``
+    if one cannot fit. Returns the layout (or None), the meshes by name and a function that draws
+    the layout to a PNG path."""
+    from .plates import footprint, layout, plate_picture
+
+    groups = printed_groups(kit)
+    env = kit.printer.envelope
+    meshes = {g[0].part.name: g[0].mesh for g in groups}
+    try:
+        lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
+    except ValueError as e:
+        result.add(Finding("printability", "fail", f"build plates: {e}", getattr(e, "parts", ())))
+        return None, meshes, None
+    result.figures["plates"] = len(lay.plates)
+
+    def picture(path):
+        plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, path,
+                      f"{kit.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
+    return lay, meshes, picture
+
+
+def write_plate_files(folder: Path, kit: Kit, lay, meshes: dict, picture) -> None:
+    """plate<i>.3mf for every plate of ``lay`` and plates.png, into ``folder``."""
+    from .plates import plate_3mf
+
+    pr, n = kit.printer, len(lay.plates)
+    for i, plate in enumerate(lay.plates, 1):
+        (folder / f"plate{i}.3mf").write_bytes(plate_3mf(plate, meshes, kit.name, kit.material,
+                                                         f"build plate {i} of {n} for the {pr.name} "
+                                                         f"({lay.size[0]:g} x {lay.size[1]:g} mm)"))
+    picture(folder / "plates.png")
