@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import Protocol
 
 from ..core.printer import PrinterLimits
 from ..errors import DesignError
@@ -22,67 +23,32 @@ from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
 
-__all__ = ["Joints", "PrinterLimits", "CheckSettings", "KitParams", "MechanismInputs", "Mechanism", "synthesize",
+__all__ = ["ChainParams", "MechanismInputs", "Mechanism", "synthesize",
            "TRIANGLE_BUDGET", "gear_triangles", "auto_module"]
 
 TRIANGLE_BUDGET = 8_000_000  # triangles of all gear solids of a kit: about 2 GB of meshes while building
 
 
-@dataclass(frozen=True)
-class Joints:
-    """Axles and fits (mm). Clearances are diametral: hole diameter minus pin diameter."""
+class ChainParams(Protocol):
+    """What the chain's design math reads of a kit's parameters (mm, rad). The gear chain's
+    resolver makes them (``partgen.mechanisms.gear_chain.params.ChainParams``, a frozen dataclass that
+    ``dataclasses.replace`` can change); this layer only states what it reads."""
 
-    axle_diameter: float
-    running_clearance: float
-    press_clearance: float
-    axial_gap: float
-
-
-@dataclass(frozen=True)
-class CheckSettings:
-    """What `partgen check` holds a kit to (mm, mm³)."""
-
-    samples: int = 360
-    interference_tolerance: float = 0.001
-    min_clearance: float = 0.3
-    min_contact_ratio: float = 1.2
-    min_tip_width_roads: float = 3.0
-    plate_margin: float = 5.0
-
-
-@dataclass(frozen=True)
-class KitParams:
-    """Everything the geometry needs besides the mechanism (mm, rad, g/mm³)."""
-
-    name: str
     system: ToothSystem
-    face_width: float
-    plate_thickness: float
-    boss_wall: float
-    hub_wall: float
-    joints: Joints
-    base_thickness: float
-    leg_height: float
-    crank_radius: float
-    pen_diameter: float
-    pen_holder_height: float
-    density: float
-    material: str
     printer: PrinterLimits
+    joints: object  # axle_diameter, running_clearance, press_clearance (diametral), axial_gap
+    checks: object  # min_contact_ratio, min_tip_width_roads
+    hub_wall: float
+    boss_wall: float
+    pen_diameter: float
     drive_teeth: int
     drive_angle: float
-    checks: CheckSettings = CheckSettings()
 
     @property
-    def bore(self) -> float:
-        """Running bore of a gear or plate on an axle, mm."""
-        return self.joints.axle_diameter + self.joints.running_clearance
+    def bore(self) -> float: ...  # running bore on an axle (axle + running clearance)
 
     @property
-    def min_root_diameter(self) -> float:
-        """Root circle that keeps ``hub_wall`` around a gear's largest hole: its running bore or its
-        press-fit D-hole, mm."""
-        return max(self.bore, self.joints.axle_diameter + self.joints.press_clearance) + 2 * self.hub_wall
+    def min_root_diameter(self) -> float: ...  # the root circle that keeps the hub wall round the bore
 
 
 @dataclass(frozen=True)
@@ -150,7 +116,7 @@ def pitch_diameter_belt(teeth: int, profile: BeltProfile) -> float:
     return _pd(teeth, profile.pitch)
 
 
-def synthesize(inputs: MechanismInputs, params: KitParams, advise: bool = True) -> Mechanism:
+def synthesize(inputs: MechanismInputs, params: ChainParams, advise: bool = True) -> Mechanism:
     """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings.
     ``advise``: a refusal computes the settings that would work (a search turns it off)."""
     links = inputs.chain.links
@@ -201,7 +167,7 @@ def synthesize(inputs: MechanismInputs, params: KitParams, advise: bool = True) 
 GEAR_RULES = ("tip-root", "contact-ratio", "involute", "backlash", "tip-width")  # what a module changes
 
 
-def auto_module(inputs: MechanismInputs, params: KitParams) -> tuple[Mechanism, KitParams]:
+def auto_module(inputs: MechanismInputs, params: ChainParams) -> tuple[Mechanism, ChainParams]:
     """``gears.module_mm: auto``: the largest module on the grid (``drivetrain.module_grid``) with which
     the chain synthesizes and every gear and mesh meets the rules `partgen check` holds it to on this
     printer (tip width in lines, tip-to-root, contact ratio, involute, backlash). Returns the
@@ -266,7 +232,7 @@ HOLE_EXCESS = 0.01  # mm: a hole's polygon circumscribes its circle by up to the
 PEN_BORE_CLEARANCE = 0.2  # mm, diametral: the pen holder's bore over the pen
 
 
-def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[Finding]:
+def kit_findings(params: ChainParams, belts: BeltSettings | None = None) -> list[Finding]:
     """Warnings for the printer's hole and wall rules (design.rules) that the given sizes break:
     the joints' bores, the holes held to size, the hub and boss walls, the tensioner rollers."""
     pr, jn = params.printer, params.joints
@@ -304,7 +270,7 @@ def kit_findings(params: KitParams, belts: BeltSettings | None = None) -> list[F
     return out
 
 
-def gear_rules(params: KitParams) -> GearRules:
+def gear_rules(params: ChainParams) -> GearRules:
     """The gear and mesh rules of a kit: its check settings on its printer."""
     return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.line_width)
 
@@ -316,7 +282,7 @@ def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Find
     return [design_finding("warn", b.rule, f"drive: {b.message}", "drive.teeth") for b in broken]
 
 
-def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
+def _drive(params: ChainParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
     """G1 and the drive gear (same teeth: one crank turn per cycle) and where the drive sits."""
     G1 = make_gear(params.drive_teeth, params.system)
     check_generable(G1)
@@ -330,7 +296,7 @@ def _drive(params: KitParams) -> tuple[GearSpec, GearSpec, tuple[float, float]]:
     return G1, G1, (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
 
 
-def _belt_mechanism(inputs: MechanismInputs, params: KitParams, ratios, findings) -> Mechanism:
+def _belt_mechanism(inputs: MechanismInputs, params: ChainParams, ratios, findings) -> Mechanism:
     """Belt stages for every coupled link; a link without room for a tensioner changes length."""
     from dataclasses import replace as _replace
 

@@ -19,7 +19,8 @@ import numpy as np
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
-from ...design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
+from ...design.mechanism import PEN_BORE_CLEARANCE, Mechanism
+from .params import KitParams
 from ...errors import DesignError
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part

@@ -14,12 +14,12 @@ from ...design import curve as curves
 from ...design import drawing
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
-from ...design.mechanism import (BeltSettings, CheckSettings, Joints, KitParams, Mechanism, MechanismInputs, auto_module,
-                                 synthesize)
+from ...design.mechanism import BeltSettings, Mechanism, MechanismInputs, auto_module, synthesize
 from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_limits
+from .params import CheckSettings, Joints, KitParams
 
 __all__ = ["resolve", "resolve_spec", "ChainSpec", "load"]
 

@@ -1,0 +1,68 @@
+"""The gear chain's kit parameters (mm, rad, g/mm³): what its resolver makes of the YAML and its kit,
+checks and design math read (``design.mechanism.ChainParams`` states what the design math needs)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ...core.printer import PrinterLimits
+from ...design.gearing import ToothSystem
+
+__all__ = ["Joints", "CheckSettings", "KitParams"]
+
+
+@dataclass(frozen=True)
+class Joints:
+    """Axles and fits (mm). Clearances are diametral: hole diameter minus pin diameter."""
+
+    axle_diameter: float
+    running_clearance: float
+    press_clearance: float
+    axial_gap: float
+
+
+@dataclass(frozen=True)
+class CheckSettings:
+    """What `partgen check` holds a kit to (mm, mm³)."""
+
+    samples: int = 360
+    interference_tolerance: float = 0.001
+    min_clearance: float = 0.3
+    min_contact_ratio: float = 1.2
+    min_tip_width_roads: float = 3.0
+    plate_margin: float = 5.0
+
+
+@dataclass(frozen=True)
+class KitParams:
+    """Everything the geometry needs besides the mechanism (mm, rad, g/mm³)."""
+
+    name: str
+    system: ToothSystem
+    face_width: float
+    plate_thickness: float
+    boss_wall: float
+    hub_wall: float
+    joints: Joints
+    base_thickness: float
+    leg_height: float
+    crank_radius: float
+    pen_diameter: float
+    pen_holder_height: float
+    density: float
+    material: str
+    printer: PrinterLimits
+    drive_teeth: int
+    drive_angle: float
+    checks: CheckSettings = CheckSettings()
+
+    @property
+    def bore(self) -> float:
+        """Running bore of a gear or plate on an axle, mm."""
+        return self.joints.axle_diameter + self.joints.running_clearance
+
+    @property
+    def min_root_diameter(self) -> float:
+        """Root circle that keeps ``hub_wall`` around a gear's largest hole: its running bore or its
+        press-fit D-hole, mm."""
+        return max(self.bore, self.joints.axle_diameter + self.joints.press_clearance) + 2 * self.hub_wall
