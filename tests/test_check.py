@@ -116,7 +116,7 @@ class OneLayer(Kit):
 
 
 def test_two_plates_on_one_layer_collide_only_at_some_angles(default_kit):
-    kit = OneLayer(**{f.name: getattr(default_kit, f.name) for f in fields(default_kit)})
+    kit = OneLayer(**{f.name: getattr(default_kit, f.name) for f in fields(default_kit) if f.init})
     findings, _ = sweep(kit, prepare(kit), sample_angles(SAMPLES))
     plates = [f for f in findings if f.check == "interference" and set(f.parts) == {"B3", "B5"}]
     assert plates, [f.message for f in findings]

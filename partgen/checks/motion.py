@@ -136,6 +136,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
             key = (n, part, id(slab))
             if key not in placed:
                 placed[key] = place2d(slab.shape, P[n, part])
+                shapely.prepare(placed[key])  # indexed: dwithin and intersects on it are fast
             return placed[key]
 
         for count, n in enumerate(np.unique(hits[:, 0])):
@@ -146,6 +147,8 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                 a, b, sa, sb, h = tri[k]
                 A, B = shape(n, a, sa), shape(n, b, sb)
                 w = worst.setdefault((a, b), _Worst())
+                if w.gap < math.inf and not shapely.dwithin(A, B, w.gap):
+                    continue  # farther apart than this pair's closest so far: no overlap, no new gap
                 common = shapely.intersection(A, B)
                 vol = common.area * h
                 zmid = max(sa.z0 + zoff[a], sb.z0 + zoff[b]) + h / 2

@@ -84,12 +84,23 @@ class Kit(ParamsKit):
     static: dict = field(default_factory=dict)  # name -> (4, 4) pose of parts fixed to the base
     clock: dict = field(default_factory=dict)
     contacts: tuple[Contact, ...] = ()
+    _posed: dict = field(default_factory=dict, init=False, compare=False, repr=False)  # θ -> poses (not copied by replace)
 
     def part(self, name: str) -> Part:
         return next(p for p in self.parts if p.name == name)
 
     def poses(self, theta: float) -> dict[str, np.ndarray]:
         """name -> (4, 4) world-from-local pose of every part at crank angle θ (rad)."""
+        theta = float(theta)
+        if theta not in self._posed:
+            if len(self._posed) > 4096:
+                self._posed.clear()
+            self._posed[theta] = self._poses(theta)
+            for T in self._posed[theta].values():
+                T.flags.writeable = False  # shared by every caller: read only
+        return dict(self._posed[theta])
+
+    def _poses(self, theta: float) -> dict[str, np.ndarray]:
         mech, st = self.mechanism, self.stack
         a = link_angles(mech, theta)
         J = joint_positions(mech, theta)
