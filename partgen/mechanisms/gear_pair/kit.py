@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...config.loader import LoadedDesign, printer_limits
-from ...core.parts import Part
+from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose_z
 from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
@@ -117,5 +117,6 @@ def build_pair(s: PairSpec, progress=None) -> PairKit:
     for name, gear in (("gear1", s.gear1), ("gear2", s.gear2)):
         say(name)
         parts.append(Part(name, "gear", bored_gear(gear, s.face_width, circle(s.bore_radius, s.tol, hole=True)),
-                          gear=gear))
+                          gear=gear, bores=(Bore("post", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 2 * s.axle_radius,
+                                                 s.face_width),)))
     return PairKit(s, tuple(parts))

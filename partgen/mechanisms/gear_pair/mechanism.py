@@ -144,10 +144,13 @@ class GearPair:
                            transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
                            max_overlap_mm2=float(play["overlap_mm2"].max()), radial_gap_mm=float(radial))
         from ...checks.bed import bed_findings
+        from ...checks.bores import bore_findings
 
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
-        res.figures["printability"] = on_bed
+        found, bores = bore_findings(kit.parts)
+        res.add(*found)
+        res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
     def trace(self, spec: PairSpec, kit: PairKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:

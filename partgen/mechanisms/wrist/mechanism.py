@@ -73,11 +73,14 @@ class Wrist:
         from .checks import check_wrist
 
         from ...checks.bed import bed_findings
+        from ...checks.bores import bore_findings
 
         res = check_wrist(kit, progress=progress)
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
-        res.figures["printability"] = on_bed
+        found, bores = bore_findings(kit.parts)
+        res.add(*found)
+        res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
     def trace(self, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
