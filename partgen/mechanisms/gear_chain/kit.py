@@ -12,7 +12,7 @@ proud of plate j. G_j's collar (height g) spaces plate j above D_{j-1} and M_{j-
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -24,6 +24,7 @@ from ...design.mechanism import PEN_BORE_CLEARANCE, KitParams, Mechanism
 from ...errors import DesignError
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part
+from ...geometry.printing import least_support_flip
 
 __all__ = ["Stack", "Contact", "Kit", "build_kit"]
 
@@ -143,6 +144,8 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
 
     def add(part: Part):
         say(part.name)
+        if part.printed:  # it lies on its larger flat face unless the other needs less support
+            part = replace(part, print_flip=least_support_flip(part.solid, params.printer.overhang_deg))
         parts.append(part)
 
     # gears
@@ -262,11 +265,11 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     add(Part("drive_axle", "axle", P.drive_axle(post, [("D", zc - CRANK_THICKNESS, zc), ("round", zc, g), ("D", g, g + f)],
                                                 FEATURE_TOL)))
     add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
-                                       HANDLE_LEN, FEATURE_TOL), print_flip=True,
+                                       HANDLE_LEN, FEATURE_TOL),
              bores=(Bore("drive axle", (0.0, 0.0, 0.0), DOWN, post.pin_diameter, CRANK_THICKNESS),)))
     add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
                                                       (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, PEN_FLOOR, FEATURE_TOL),
-             print_flip=True, bores=(Bore("pen", (0.0, 0.0, t + params.pen_holder_height), DOWN, params.pen_diameter,
+             bores=(Bore("pen", (0.0, 0.0, t + params.pen_holder_height), DOWN, params.pen_diameter,
                                           params.pen_holder_height - PEN_FLOOR),)))
 
     contacts = _contacts(mech, params, st, len(legs))

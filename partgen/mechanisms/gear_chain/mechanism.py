@@ -26,6 +26,9 @@ ROLE_COLOURS = {"gear": "#4c78a8", "link": "#f58518", "base": "#8c8c8c", "leg": 
                 "crank": "#e45756", "pen_holder": "#b279a2", "pulley": "#4c78a8", "idler": "#72b7b2"}
 
 
+BED_RULES = ("bed-contact", "shells", "bore-open", "needs-supports")  # checks.bed and checks.bores
+
+
 def _r6(x) -> float:
     return float(round(float(x), 6))
 
@@ -257,12 +260,19 @@ class GearChain:
              f"hole ≥ Ø{f['printability'].get('smallest_hole_mm', 0):.2f}, wall ≥ "
              f"{f['printability'].get('thinnest_wall_mm', 0):.2f}, tip ≥ {f['printability'].get('narrowest_tip_mm', 0):.2f}"
              f" mm; {f.get('plates', '?')} build plate(s)"),
+            ("bed", "flat on the bed, one shell, bores open",
+             f"contact ≥ {f['printability'].get('least_bed_contact_mm2', 0):.0f} mm², "
+             f"{sum(len(b) for b in f['printability'].get('bores', {}).values())} bores, "
+             f"{len(f['printability'].get('needs_supports_mm2', {}))} part(s) need supports"),
         ]
         if "kit" in counts:
             rows.append(("kit", "files match the design", ""))
         lines.append(f"{'check':<14}{'result':<8}{'what':<44}figures")
         for name, what, figs in rows:
             c = counts.get(name, {})
+            if name in ("printability", "bed"):  # the bed's rules apart from the other printability rules
+                c = {sev: sum(x.check == "printability" and x.severity == sev and (x.rule in BED_RULES) == (name == "bed")
+                              for x in result.findings) for sev in ("fail", "warn")}
             status = "FAIL" if c.get("fail") else ("warn" if c.get("warn") else "ok")
             lines.append(f"{name:<14}{status:<8}{what:<44}{figs}")
         fails = [x for x in result.findings if x.severity in ("fail", "warn")]

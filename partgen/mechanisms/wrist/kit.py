@@ -4,7 +4,7 @@ for any bend (θ, ψ) of the workspace."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from shapely.geometry import box
@@ -16,6 +16,7 @@ from ...geometry import wrist as W
 
 from ...core.parts import Bore
 from ...geometry.parts import DFit, Part
+from ...geometry.printing import least_support_flip
 from ...geometry.solid import SLIVER, extrude, float32_sound, print_arrays
 
 __all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max"]
@@ -137,4 +138,6 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
         parts.append(Part("cross_gear", "wrist_gear", solid, gear=spec.cross,
                           bores=(Bore("shaft", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), fit.pin_diameter,
                                       spec.base_height + A / 4 - 1.0),)))
+    # each lies on its larger flat face unless the other needs less support
+    parts = [replace(p, print_flip=least_support_flip(p.solid, spec.printer.overhang_deg)) for p in parts]
     return parts, domes, pieces, int(poses.shape[0] * poses.shape[1]), (alpha1, alpha2)
