@@ -176,6 +176,14 @@ class GearPair:
     def csv(self, trace: Trace) -> str:
         return self.csv_header + "".join(f"{a:.9f},{b:.9f},{c:.9f},{d:.6f}\n" for a, b, c, d in trace.data)
 
+    def assembly_steps(self, spec: PairSpec, kit: PairKit) -> list[tuple[str, tuple[str, ...]]]:
+        """The base, gear 1 on its post, gear 2 on the other post in mesh."""
+        return [("Stand the base on the table, its two posts up.", ("base",)),
+                (f"Slide gear1 ({spec.gear1.teeth} teeth) down over its post until it rests on the base.", ("gear1",)),
+                (f"Slide gear2 ({spec.gear2.teeth} teeth) down over the other post, turning it until its teeth drop into "
+                 "mesh with gear1's; "
+                 "turn gear1 by hand: both turn freely.", ("gear2",))]
+
     def bill_text(self, spec: PairSpec, man: dict, dest, seconds: float) -> str:
         lines = [f"{spec.name}: {spec.gear1.teeth}/{spec.gear2.teeth} teeth, module {spec.gear1.system.module:g} mm, "
                  f"centre distance {spec.centre_distance:.3f} mm"]
