@@ -15,7 +15,8 @@ from partgen import pipeline
 from partgen.checks.bed import bed_findings
 from partgen.checks.bores import LEAD_MM, MARGIN_MM, bore_blocked, bore_findings
 from partgen.core.parts import Bore, Part
-from partgen.geometry.printing import bed_contact_area, least_support_flip, overhang_area
+from partgen.geometry.printing import (MIN_BED_CONTACT_MM2, bed_contact_area, best_orientation, least_support_flip,
+                                      overhang_area)
 from partgen.geometry.solid import mesh_arrays
 
 from partgen.config.loader import PRINTERS_DIR, printer_limits, read_yaml, validate
@@ -135,6 +136,12 @@ def test_the_chain_parts_lie_on_their_least_support_face(kit_of):
         chosen, other = ((0, 0, 1), (0, 0, -1)) if p.print_flip else ((0, 0, -1), (0, 0, 1))
         assert overhang_area(v, f, chosen, 45.0) <= overhang_area(v, f, other, 45.0) + 0.05, p.name
     assert kit.part("crank").print_flip and not kit.part("pen_holder").print_flip
+    # no other flat face (any plane of the hull the part's own faces lie in) needs less support
+    for name in ("crank", "pen_holder", "drive_axle", "leg1", "G2"):
+        p = kit.part(name)
+        v, f = mesh_arrays(p.solid)
+        chosen = overhang_area(v, f, (0, 0, 1) if p.print_flip else (0, 0, -1), 45.0)
+        assert best_orientation(v, f, 45.0, MIN_BED_CONTACT_MM2).overhang_mm2 >= chosen - 0.05, name
     needs = {f.parts[0] for f in found if f.rule == "needs-supports"}
     assert needs == set(figures["needs_supports_mm2"]) and "pen_holder" in needs
     ph = figures["orientation"]["pen_holder"]
