@@ -12,7 +12,7 @@ import manifold3d as m3d
 import pytest
 
 from partgen import pipeline
-from partgen.checks.bed import bed_findings
+from partgen.checks.bed import bed_findings, bed_summary
 from partgen.checks.bores import LEAD_MM, MARGIN_MM, bore_blocked, bore_findings
 from partgen.core.parts import Bore, Part
 from partgen.geometry.printing import (MIN_BED_CONTACT_MM2, bed_contact_area, best_orientation, least_support_flip,
@@ -144,6 +144,9 @@ def test_the_chain_parts_lie_on_their_least_support_face(kit_of):
         assert best_orientation(v, f, 45.0, MIN_BED_CONTACT_MM2).overhang_mm2 >= chosen - 0.05, name
     needs = {f.parts[0] for f in found if f.rule == "needs-supports"}
     assert needs == set(figures["needs_supports_mm2"]) and "pen_holder" in needs
+    _, bores = bore_findings(kit.parts)
+    line = bed_summary({**figures, "bores": bores})
+    assert "43 of 43 bores open" in line and "upside down: crank;" in line and "pen_holder 78 mm²" in line
     ph = figures["orientation"]["pen_holder"]
     v, f = mesh_arrays(kit.part("pen_holder").solid)
     assert ph["contact_mm2"] == pytest.approx(bed_contact_area(v, f), abs=0.1) and ph["lies_on"] == "bottom"

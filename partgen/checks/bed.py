@@ -23,7 +23,7 @@ from ..geometry.measure import shell_count
 from ..geometry.printing import MIN_BED_CONTACT_MM2
 from ..geometry.solid import print_arrays
 
-__all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings"]
+__all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings", "bed_summary"]
 
 ON_BED_TOL = 1e-4  # mm: a face within this of z = 0 lies on the bed
 FLAT_COS = 0.9999  # a face whose normal is within 0.8° of straight down is flat
@@ -80,3 +80,17 @@ def bed_findings(parts, printer: PrinterLimits) -> tuple[list[Finding], dict]:
     if not math.isfinite(figures["least_bed_contact_mm2"]):
         del figures["least_bed_contact_mm2"]
     return found, figures
+
+
+def bed_summary(figures: dict) -> str:
+    """One line for a check's table from ``bed_findings``' figures (and ``checks.bores``' under
+    "bores"): the least contact, how many bores are open, which parts lie upside down, which need
+    supports and how much."""
+    flipped = [n for n, o in figures.get("orientation", {}).items() if o["lies_on"] != "bottom"]
+    bores = figures.get("bores", {})
+    shut = sum(b["blocked_mm3"] > 0.001 for t in bores.values() for b in t.values())
+    need = figures.get("needs_supports_mm2", {})
+    return (f"printing: contact ≥ {figures.get('least_bed_contact_mm2', 0):.0f} mm²; "
+            f"{sum(len(t) for t in bores.values()) - shut} of {sum(len(t) for t in bores.values())} bores open; "
+            + (f"upside down: {', '.join(flipped)}; " if flipped else "")
+            + ("needs supports: " + ", ".join(f"{n} {a:.0f} mm²" for n, a in need.items()) if need else "no supports"))
