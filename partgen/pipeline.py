@@ -184,6 +184,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     with the mechanism's sections, the bill of parts with pictures, what to buy, the build plates.
     The kit is built once and shared by the check, the trace and the pictures."""
     from .export import report as R
+    from .export.assembly import steps_of
     from .export.bill import bill_sections
 
     say = progress or (lambda step: None)
@@ -212,7 +213,8 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
     sections = mech.report_sections(spec, kit, result, tr, files, {})
     own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
-    sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit)) if x[0] not in own]
+    sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit),
+                                              steps_of(mech, spec, kit)) if x[0] not in own]
     if plates_png:
         sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
                                          f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "

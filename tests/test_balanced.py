@@ -112,7 +112,7 @@ def test_eq_9_to_11_need_the_general_derivation_otherwise(dims):
     md = solve_masses(bf, m, p, (4, 7, 9))
     assert worst_com(bf, md, p) < 1e-11
     m6, p6 = masses()
-    if dims == (60.0, 80.0, 70.0, 90.0):  # the README's figure: the transcribed equations' masses in this four-bar
+    if dims == (60.0, 80.0, 70.0, 90.0):  # docs/papers.md's figure: the transcribed equations' masses in this four-bar
         rng_free = solve_masses(BF, m6, p6, (3, 6, 9), paper_mass_equations)
         assert worst_com(BF, rng_free, p6) == pytest.approx(6.29, abs=0.01)
 

@@ -149,7 +149,10 @@ def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache
     code = main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "24", "--json", "--plates",
                  str(tmp_path / "plates")])
     out = json.loads(capsys.readouterr().out)
-    assert code == 0 and out["ok"] is True and out["findings"] == []
+    assert code == 0 and out["ok"] is True and [f for f in out["findings"] if f["severity"] != "info"] == []
+    # the facts: the parts that need supports, the bores open where their pins enter
+    assert {f["parts"][0] for f in out["findings"] if f.get("rule") == "needs-supports"} == {"drive_axle", "pen_holder"}
+    assert any(f.get("rule") == "bore-open" and f["message"].startswith("43 of 43 bores") for f in out["findings"])
     assert out["figures"]["plates"] >= 1
     assert sorted(p.name for p in (tmp_path / "plates").iterdir())[-1] == "plates.png"
     code = main(["check", str(DESIGNS / "oversize.yaml"), "--samples", "8", "--json", "--no-plates"])

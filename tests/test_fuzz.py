@@ -17,7 +17,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIGS = sorted((ROOT / "configs").glob("*.yaml"))
-BUDGET_S = 20.0  # ~120 cases on 2 busy cores; benchmarks/bad_inputs.py runs the large fuzz
+BUDGET_S = 25.0  # ~150 cases on 2 cores, ~50 under a load of 10; benchmarks/bad_inputs.py runs the large fuzz
 CASE_SECONDS = 4.0
 
 
@@ -36,7 +36,7 @@ def test_fuzzed_designs_exit_0_or_2_and_write_nothing_on_failure():
                               for r in bad)
     codes = Counter(r["code"] for r in done.values())
     kinds = {(r["kind"], r["config"]) for r in done.values()}
-    assert codes[2] >= 50 and len(kinds) >= 30, (codes, len(kinds))
+    assert codes[2] >= 30 and len(kinds) >= 20, (codes, len(kinds))
     # a message names the key it is about: the mutated key, a key above it or below it
     wrong = []
     for r in done.values():

@@ -118,7 +118,9 @@ def test_assembly_glb_opens_with_every_part(built_kits):
     pen = trace(built.mechanism.chain, np.array([0.0]))[0] - built.mechanism.chain.offset
     T, geom = scene.graph["pen_holder"]
     v = scene.geometry[geom].vertices
-    ring = v[np.abs(v[:, 2] - v[:, 2].min()) < 1e-6]  # the tube's end: full circles about the axis
+    flip = next(p for p in man["parts"] if p["name"] == "pen_holder")["print_flip"]
+    end = v[:, 2].min() if flip else v[:, 2].max()  # the tube's end (the spigot's is a D)
+    ring = v[np.abs(v[:, 2] - end) < 1e-6]  # the tube's end: full circles about the axis
     world = T @ np.append(ring.mean(axis=0), 1.0)
     assert world[:2] == pytest.approx([pen.real, pen.imag], abs=1e-3)
 

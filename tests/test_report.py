@@ -40,6 +40,25 @@ def test_page_is_self_contained(page):
     assert "Every check holds" in text
 
 
+def test_page_has_the_assembly_steps_in_order_with_their_pictures(page):
+    text = page.read_text()
+    section = text.split('<h2 id="assembly">Assembly</h2>', 1)[1].split("</section>", 1)[0]
+    steps = re.findall(r"<li><p>(.*?)</p>(.*?)</li>", section)
+    pictured = [re.findall(r'<img src="data:image/png;base64,[^"]+" alt="([^"]+)"', figs) for _, figs in steps]
+    # base and legs, the drive, link 1 with its gears, then each link in chain order, the crank, the pen holder
+    assert pictured[0] == ["base", "leg1", "leg2", "leg3", "leg4"] and pictured[1] == ["drive_axle", "drive"]
+    links = [st for st in steps if st[0].startswith("Link ")]
+    assert [int(t.split(":")[0][5:]) for t, _ in links] == list(range(1, 12))
+    assert pictured[2] == ["G1", "B1", "D1", "M1"] and pictured[-2:] == [["crank"], ["pen_holder"]]
+    named = [n for names in pictured for n in names]
+    count = int(re.search(r"\((\d+) printed parts", text).group(1))  # the bill's caption
+    assert len(named) == len(set(named)) == count  # every printed part of the default chain once, with its picture
+    # the step's pictures are the bill's: the same PNG as the part's row in the bill of parts
+    bill = text.split('<h2 id="bill-of-parts">', 1)[1].split("</section>", 1)[0]
+    src = lambda html_, name: re.search(rf'<img src="([^"]+)" alt="{name}"', html_).group(1)  # noqa: E731
+    assert src(section, "B1") == src(bill, "B1")
+
+
 @pytest.mark.skipif(BROWSER is None and not os.environ.get("CI"), reason="no chromium (scripts/install-browser.sh)")
 def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     assert BROWSER, "chromium missing: .ci/run installs it with scripts/install-browser.sh"
@@ -52,7 +71,7 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     m = re.search(r"<title>IMAGES:(\d+):(\d+):H2:(\d+)</title>", dom)
     assert m, dom[:500]
     total, loaded, headings = map(int, m.groups())
-    assert total >= 40 and loaded == total and headings == 7  # design, bill of parts, filament, stacking, trace, check, build plates
+    assert total >= 40 and loaded == total and headings == 8  # design, bill of parts, filament, assembly, stacking, trace, check, build plates
     shot = tmp_path / "shot.png"
     subprocess.run(cmd[:-2] + ["--window-size=1280,2000", f"--screenshot={shot}", probe.as_uri()],
                    capture_output=True, timeout=120)

@@ -58,7 +58,7 @@ def test_trace_is_the_right_way_up(butterfly):
 
 def test_paper_eq2_sign_convention_is_the_slip(butterfly):
     """Table 1's phases used in Eq 2 as printed (L e^{i(kθ - ψ)}) do not give the curve; used as
-    arg of the coefficient (e^{i(kθ + ψ)}) they do. This is the sign slip the README reports."""
+    arg of the coefficient (e^{i(kθ + ψ)}) they do. This is the sign slip docs/papers.md reports."""
     rows = table("table1_full")["rows"]
     theta = np.linspace(0, 2 * np.pi, 4001)
     target = rho(theta) * np.exp(1j * theta)

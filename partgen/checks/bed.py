@@ -5,8 +5,10 @@ sealed void inside, no loose piece), and the overhang area steeper than the prin
 
 Rules: ``bed-contact`` fail: the faces lying on the bed (normal straight down, every corner at z = 0)
 cover less than MIN_BED_CONTACT_MM2 (a point or a line contact); ``shells`` fail: more than one
-shell; the figure ``needs_supports_mm2``: per part, the downward faces off the bed steeper than
-``overhang_deg`` from the vertical, their area (mm²) (a fact, not a failure: the slicer adds them).
+shell; ``needs-supports`` info (a fact, not a failure: the slicer adds them), and the figure
+``needs_supports_mm2``: per part, the downward faces off the bed steeper than ``overhang_deg`` from
+the vertical, their area (mm²). The figure ``orientation``: per part, the face it lies on (the kit
+chose it: ``geometry.printing.least_support_flip``), its contact and support areas.
 """
 
 from __future__ import annotations
@@ -18,11 +20,11 @@ import numpy as np
 from ..core.findings import Finding
 from ..core.printer import PrinterLimits
 from ..geometry.measure import shell_count
+from ..geometry.printing import MIN_BED_CONTACT_MM2
 from ..geometry.solid import print_arrays
 
-__all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings"]
+__all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings", "bed_summary"]
 
-MIN_BED_CONTACT_MM2 = 20.0  # mm²: the least flat contact with the bed a printed part may stand on
 ON_BED_TOL = 1e-4  # mm: a face within this of z = 0 lies on the bed
 FLAT_COS = 0.9999  # a face whose normal is within 0.8° of straight down is flat
 
@@ -47,9 +49,9 @@ def bed_contact_and_overhang(vertices: np.ndarray, faces: np.ndarray, overhang_d
 
 def bed_findings(parts, printer: PrinterLimits) -> tuple[list[Finding], dict]:
     """The bed rules for every distinct printed part (``core.parts.Part``; parts sharing a solid are
-    measured once). Returns the findings and figures: the least bed contact and the parts that need
-    supports, with their overhang areas (mm²)."""
-    found, figures = [], {"least_bed_contact_mm2": math.inf, "needs_supports_mm2": {}}
+    measured once). Returns the findings and figures: the least bed contact, the parts that need
+    supports with their overhang areas (mm²), each part's print orientation."""
+    found, figures = [], {"least_bed_contact_mm2": math.inf, "needs_supports_mm2": {}, "orientation": {}}
     seen = set()
     for p in parts:
         if not p.printed or (id(p.solid), p.print_flip) in seen:
@@ -67,8 +69,28 @@ def bed_findings(parts, printer: PrinterLimits) -> tuple[list[Finding], dict]:
             found.append(Finding("printability", "fail", f"{p.name} is {n} shells, not one: a sealed void or a loose "
                                  "piece inside it (a bore closed at both ends prints as a cavity)", (p.name,), None,
                                  float(n), "", rule="shells"))
-        if over > 0.5:  # a figure, not a finding: the slicer adds the supports
+        figures["orientation"][p.name] = {"lies_on": "top (printed upside down)" if p.print_flip else "bottom",
+                                          "contact_mm2": round(bed, 1), "support_mm2": round(over, 1)}
+        if over > 0.5:  # a fact, not a failure: the slicer adds the supports
             figures["needs_supports_mm2"][p.name] = round(over, 1)
+            found.append(Finding("printability", "info", f"{p.name} needs supports: {over:.0f} mm² faces down more "
+                                 f"steeply than {printer.overhang_deg:g}° from the vertical, lying on its "
+                                 f"{'top (printed upside down)' if p.print_flip else 'bottom'}", (p.name,), None, over,
+                                 "mm²", rule="needs-supports"))
     if not math.isfinite(figures["least_bed_contact_mm2"]):
         del figures["least_bed_contact_mm2"]
     return found, figures
+
+
+def bed_summary(figures: dict) -> str:
+    """One line for a check's table from ``bed_findings``' figures (and ``checks.bores``' under
+    "bores"): the least contact, how many bores are open, which parts lie upside down, which need
+    supports and how much."""
+    flipped = [n for n, o in figures.get("orientation", {}).items() if o["lies_on"] != "bottom"]
+    bores = figures.get("bores", {})
+    shut = sum(b["blocked_mm3"] > 0.001 for t in bores.values() for b in t.values())
+    need = figures.get("needs_supports_mm2", {})
+    return (f"printing: contact ≥ {figures.get('least_bed_contact_mm2', 0):.0f} mm²; "
+            f"{sum(len(t) for t in bores.values()) - shut} of {sum(len(t) for t in bores.values())} bores open; "
+            + (f"upside down: {', '.join(flipped)}; " if flipped else "")
+            + ("needs supports: " + ", ".join(f"{n} {a:.0f} mm²" for n, a in need.items()) if need else "no supports"))

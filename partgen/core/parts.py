@@ -4,7 +4,21 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Part"]
+__all__ = ["Part", "Bore"]
+
+
+@dataclass(frozen=True)
+class Bore:
+    """A bore of a part that a pin, post or axle goes into, in the part's local frame (mm):
+    ``point`` where the pin enters (on the part's outside), ``axis`` the direction it goes in
+    (unit), ``diameter_mm`` the largest round pin that must pass (a D-hole: twice the distance from
+    its axis to its flat), ``depth_mm`` how far the pin goes in from ``point``."""
+
+    name: str
+    point: tuple[float, float, float]
+    axis: tuple[float, float, float]
+    diameter_mm: float
+    depth_mm: float
 
 
 @dataclass(frozen=True)
@@ -20,3 +34,4 @@ class Part:
     clocking: float = 0.0
     printed: bool = True
     info: tuple = ()
+    bores: tuple[Bore, ...] = ()  # what takes a pin or axle (checks.bores tests each is open)

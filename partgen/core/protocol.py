@@ -13,7 +13,7 @@ from .findings import Result
 from .parts import Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section"]
+__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section", "Step"]
 
 
 @runtime_checkable
@@ -79,6 +79,7 @@ class Trace:
 
 
 Section = tuple[str, str]  # (title, html) of a report page
+Step = tuple[str, tuple[str, ...]]  # an assembly step: (what to do, the names of the kit's parts it uses)
 
 
 class Mechanism(Protocol):
@@ -107,3 +108,6 @@ class Mechanism(Protocol):
     def report_sections(self, spec, kit: Kit, result: Result, trace: Trace, pictures) -> list[Section]: ...
     def bill_text(self, spec, manifest: dict) -> str: ...
     def check_text(self, spec, result: Result) -> str: ...
+    # Optional: ``assembly_steps(spec, kit) -> list[Step]``, the steps in the order a maker puts the
+    # kit together, each with the parts it uses (the report shows them with their pictures). A
+    # mechanism without it gets ``export.assembly.default_steps`` (base first, then kit order).

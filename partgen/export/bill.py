@@ -8,14 +8,19 @@ import html
 from ..core.protocol import Kit
 from . import report as R
 from .kit import group_parts, printed
+from ..geometry.solid import mesh_arrays
+from .assembly import assembly_section
 from .render import render
 
 __all__ = ["bill_sections", "stock_items", "shopping_list", "printed_rows"]
 
 
-def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], groups=None) -> list[tuple[str, str]]:
-    """[("Bill of parts", html)] and, when the kit has bought parts, [("Bought parts", html)];
-    ``groups``: the kit's printed parts grouped (``export.kit.group_parts``), if made already."""
+def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], groups=None,
+                  steps: list | None = None) -> list[tuple[str, str]]:
+    """[("Bill of parts", html), ("Filament", html)], when the kit has bought parts ("Bought parts",
+    html), and with ``steps`` (``export.assembly.steps_of``) ("Assembly", html): the steps in order
+    with the pictures of their parts. ``groups``: the kit's printed parts grouped
+    (``export.kit.group_parts``), if made already."""
     groups = groups or group_parts([printed(p) for p in kit.parts if p.printed])
     colour = lambda role: colours.get(role, "#999")  # noqa: E731
     poses = kit.poses(0.0)
@@ -25,11 +30,12 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
             T = poses[it.part.name] @ it.local_from_print
             scene.append((g[0].mesh.vertices @ T[:3, :3].T + T[:3, 3], g[0].mesh.faces, colour(it.part.role)))
     assembly_png = render(scene, (1100, 720), elev=35, azim=-70)
-    rows = []
+    rows, pictures = [], {}
     density = kit.density
     for g in groups:
         p, m = g[0].part, g[0].mesh
         pic = render([(m.vertices, m.faces, colour(p.role))], (300, 240))
+        pictures.update({it.part.name: pic for it in g})
         gear = p.gear
         com = m.center_mass if m.is_volume else m.centroid
         rows.append([R.img(pic, p.name), p.name, p.role, len(g), " × ".join(f"{x:.1f}" for x in m.extents),
@@ -53,6 +59,11 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
         buy = [[q, item, size, ", ".join(used[:6]) + (" …" if len(used) > 6 else "")]
                for item, q, size, used in stock_items(purchased)]
         out.append(("Bought parts", R.table(["quantity", "item", "stock size", "for"], buy, left=4)))
+    if steps:
+        for p in kit.parts:  # the bought parts as modelled (a belt's band)
+            if not p.printed and any(p.name in names for _, names in steps):
+                pictures[p.name] = render([(*mesh_arrays(p.solid), colour(p.role))], (300, 240))
+        out.append(assembly_section(steps, pictures))
     return out
 
 

@@ -19,7 +19,7 @@ th,td{border:1px solid #ddd;padding:.25em .6em;text-align:right;vertical-align:m
 th{background:#f5f5f5}td.l,th.l{text-align:left}
 .ok{color:#1a7f37;font-weight:600}.fail{color:#cf222e;font-weight:600}.warn{color:#9a6700}
 .grid{display:flex;flex-wrap:wrap;gap:1em}.grid figure{margin:0}figcaption{font-size:.85em;color:#555}
-img{max-width:100%}.parts img{width:150px}
+img{max-width:100%}.parts img{width:150px}.steps li{margin-bottom:1em}.steps .grid img{width:120px}
 """
 
 

@@ -39,6 +39,11 @@ class DFit:
     def shaft(self, tol: float) -> Polygon:
         return d_shape(self.radius, self.radius - FLAT_DEPTH, tol)
 
+    @property
+    def pin_diameter(self) -> float:
+        """mm: the largest round pin through its D-hole (twice the distance from the axis to the flat)."""
+        return 2 * (self.radius - FLAT_DEPTH)
+
     def hole(self, tol: float) -> Polygon:
         c = self.clearance / 2
         return d_shape(self.radius + c, self.radius - FLAT_DEPTH + c, tol, hole=True)

@@ -23,8 +23,9 @@ from shapely.geometry import Polygon
 from .solid import mesh_arrays
 
 __all__ = ["face_areas", "rotation_between", "overhang_area", "bed_contact_area", "shells", "Orientation",
-           "flat_faces", "best_orientation", "bore_open", "footprint"]
+           "flat_faces", "best_orientation", "least_support_flip", "MIN_BED_CONTACT_MM2", "bore_open", "footprint"]
 
+MIN_BED_CONTACT_MM2 = 20.0  # mm²: the least flat contact with the bed a printed part may stand on
 FLAT = 1e-6  # a face lies in a plane if its normal is within this (1 − cos) of the plane's
 ON_BED = 1e-3  # mm: a vertex this close to the bed plane touches it (float32 STLs keep ~1e-5 mm)
 
@@ -188,6 +189,20 @@ def best_orientation(vertices: np.ndarray, faces: np.ndarray, angle_deg: float =
                                            round(float(height[i]), 3), i))
     return Orientation(rotation_between(downs[k], (0.0, 0.0, -1.0)), tuple(float(x) for x in downs[k]),
                        float(over[k]), float(contact[ok[k]]), float(height[k]))
+
+
+def least_support_flip(solid: m3d.Manifold, angle_deg: float = 45.0, min_contact_mm2: float = MIN_BED_CONTACT_MM2) -> bool:
+    """Whether a part made along z (a stack of prisms, a cap on a flat base: the faces it can lie on
+    are its bottom and its top) prints upside down (``Part.print_flip``): it lies on its larger flat
+    z-face unless the other needs less support beyond ``angle_deg``. Faces with less than
+    ``min_contact_mm2`` of flat contact are left out while the other has that much; ties: the
+    larger contact, then as made."""
+    v, f = mesh_arrays(solid)
+    cands = []
+    for flip, down in ((False, (0.0, 0.0, -1.0)), (True, (0.0, 0.0, 1.0))):
+        cands.append((round(overhang_area(v, f, down, angle_deg), 1), -round(bed_contact_area(v, f, down), 1), flip))
+    ok = [c for c in cands if -c[1] >= min_contact_mm2] or cands
+    return min(ok)[2]
 
 
 def bore_open(solid: m3d.Manifold, point, direction, radius: float, length: float, segments: int = 32) -> float:

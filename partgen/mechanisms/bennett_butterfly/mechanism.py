@@ -325,6 +325,34 @@ class BennettButterfly:
     def csv(self, trace: Trace) -> str:
         return self.csv_header + "".join(f"{a:.9f},{f:.6f},{s:.6f}\n" for a, f, s in trace.data)
 
+    def assembly_steps(self, spec, kit) -> list[tuple[str, tuple[str, ...]]]:
+        """Fill the counterweight pockets; the base; then the four Bennett loops around S in turn, each
+        link pinned to the ones already there; the two cross joints last."""
+        from ...design import bennett_butterfly as bbf
+
+        have = {p.name for p in kit.parts}
+        link = lambda i: f"link{i:02d}"  # noqa: E731
+        fills = tuple(sorted(x for x in have if x.startswith("fill_")))
+        steps = [("Fill each link's counterweight pocket with its slugs and binder and let the binder set.",
+                  fills)] if fills else []
+        steps.append(("Stand the base on the table, its S bore up.", ("base",)))
+        placed, done = set(), set()
+        for loop in ((1, 2, 3, 4), (4, 5, 6, 7), (7, 8, 9, 10), (10, 11, 12, 1)):
+            joints = [j for j, ((a, b), _, _) in bbf.JOINTS.items() if a in loop and b in loop and j not in done]
+            done.update(joints)
+            new = [i for i in loop if i not in placed]
+            placed.update(loop)
+            pins = tuple(f"pin_{j}" for j in joints if f"pin_{j}" in have)
+            steps.append((f"Bennett loop of links {', '.join(str(i) for i in loop)}: lay "
+                          f"{', '.join(link(i) for i in new)} in place and push the pins of joints {', '.join(joints)} "
+                          "through their stacks" + (" (the S stack into the base)" if "S14" in joints else "") + ".",
+                          tuple(link(i) for i in new) + pins))
+        rest = [j for j in bbf.JOINTS if j not in done]
+        if rest:
+            steps.append((f"Close the cross joints {', '.join(rest)} with their pins.",
+                          tuple(f"pin_{j}" for j in rest if f"pin_{j}" in have)))
+        return steps
+
     def bill_text(self, spec, man: dict, dest, seconds: float) -> str:
         return bill_text(man, dest, seconds)
 

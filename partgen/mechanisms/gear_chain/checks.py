@@ -15,6 +15,7 @@ from ...checks.meshing import check_meshes
 from ...checks.motion import prepare, sample_angles, sweep
 from .belts import check_belts
 from ...checks.bed import bed_findings
+from ...checks.bores import bore_findings
 from ...checks.printability import check_printability
 
 __all__ = ["check_kit", "printed_extents"]
@@ -56,7 +57,9 @@ def check_kit(kit: Kit, samples: int | None = None, progress=None) -> Result:
     res.add(*found)
     found, on_bed = bed_findings(kit.parts, kit.params.printer)
     res.add(*found)
-    printing = {**printing, **on_bed}
+    found, bores = bore_findings(kit.parts)
+    res.add(*found)
+    printing = {**printing, **on_bed, "bores": bores}
     found, belts = check_belts(kit)
     res.add(*found)
     if belts:

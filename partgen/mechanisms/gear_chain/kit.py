@@ -12,10 +12,11 @@ proud of plate j. G_j's collar (height g) spaces plate j above D_{j-1} and M_{j-
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ...core.parts import Bore
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
@@ -24,8 +25,11 @@ from .params import KitParams
 from ...errors import DesignError
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part
+from ...geometry.printing import least_support_flip
 
 __all__ = ["Stack", "Contact", "Kit", "build_kit"]
+
+UP, DOWN = (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)
 
 FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
 CRANK_THICKNESS = 6.0
@@ -152,13 +156,20 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
 
     def add(part: Part):
         say(part.name)
+        if part.printed:  # it lies on its larger flat face unless the other needs less support
+            part = replace(part, print_flip=least_support_flip(part.solid, params.printer.overhang_deg))
         parts.append(part)
 
     # gears
     def fixed(name: str, spec):
         collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
         solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
-        add(Part(name, "gear", solid, gear=spec, clocking=clock[name]))
+        add(Part(name, "gear", solid, gear=spec, clocking=clock[name], bores=(hub_bore,)))
+
+    # G's round bore runs through teeth, collar and boss: the post comes up into it from below
+    hub_bore = Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f + g + t + g)
+    gear_bores = {"D": Bore("axle", (0.0, 0.0, 0.0), UP, post.pin_diameter, f),
+                  "round": Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f)}
 
     holes = {"D": post.hole(FEATURE_TOL), "round": P.disc(bore_r, FEATURE_TOL, hole=True)}
     bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
@@ -167,7 +178,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
         key = (spec, hole)
         if key not in bored:
             bored[key] = P.bored_gear(spec, f, holes[hole])
-        add(Part(name, "gear", bored[key], gear=spec))
+        add(Part(name, "gear", bored[key], gear=spec, bores=(gear_bores[hole],)))
 
     fixed("G1", mech.G1)
     loose("drive", mech.drive, "D")
@@ -188,13 +199,14 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
                 collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
                 body = P.fixed_hub(body, f, bore_r, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
             add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
-                                                 ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4)))))
+                                                 ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4))),
+                     bores=(hub_bore if name[0] == "G" else gear_bores[hole],)))
         if s.tensioner is not None:
             r = s.tensioner_radius
             roller = P.prisms([(P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
                                (P.annulus(bore_r, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
                                (P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
-            add(Part(f"T{s.j}", "idler", roller))
+            add(Part(f"T{s.j}", "idler", roller, bores=(gear_bores["round"],)))
         _, path = belt_path_of(s, prof)
         z0 = bs.flange_thickness + 0.1
         band = P.belt_band(path, prof.pitch_line_offset + prof.groove_depth, prof.back_height, z0, z0 + prof.width)
@@ -228,7 +240,11 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
             distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
             distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
         solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole, posts)
-        add(Part(f"B{j}", "link", solid))
+        # G_j's D-boss presses up into the proximal hole; the pen holder's spigot down into the last distal one
+        bores = (Bore("G boss", (0.0, 0.0, 0.0), UP, boss.pin_diameter, t),)
+        if distal_hole is not None:
+            bores += (Bore("pen spigot", (S, 0.0, t), DOWN, pen_spigot.pin_diameter, t),)
+        add(Part(f"B{j}", "link", solid, bores=bores))
 
     # base, legs, drive axle, crank, pen holder
     bt = params.base_thickness
@@ -251,7 +267,9 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
     feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
     ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
-    add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post])))
+    base_bores = (Bore("drive axle", (dx, dy, g), DOWN, 2 * ra, g + bt),) + tuple(
+        Bore(f"leg{i + 1} peg", (c[0], c[1], -bt), UP, 2 * ra, bt) for i, c in enumerate(legs))
+    add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post]), bores=base_bores))
     leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
     for i in range(len(legs)):
         add(Part(f"leg{i + 1}", "leg", leg_solid))
@@ -259,10 +277,12 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     add(Part("drive_axle", "axle", P.drive_axle(post, [("D", zc - CRANK_THICKNESS, zc), ("round", zc, g), ("D", g, g + f)],
                                                 FEATURE_TOL)))
     add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
-                                       HANDLE_LEN, FEATURE_TOL), print_flip=True))
+                                       HANDLE_LEN, FEATURE_TOL),
+             bores=(Bore("drive axle", (0.0, 0.0, 0.0), DOWN, post.pin_diameter, CRANK_THICKNESS),)))
     add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
                                                       (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, PEN_FLOOR, FEATURE_TOL),
-             print_flip=True))
+             bores=(Bore("pen", (0.0, 0.0, t + params.pen_holder_height), DOWN, params.pen_diameter,
+                                          params.pen_holder_height - PEN_FLOOR),)))
 
     contacts = _contacts(mech, params, st, len(legs))
     static = {"base": pose_z()}

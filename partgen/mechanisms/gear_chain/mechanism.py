@@ -26,6 +26,9 @@ ROLE_COLOURS = {"gear": "#4c78a8", "link": "#f58518", "base": "#8c8c8c", "leg": 
                 "crank": "#e45756", "pen_holder": "#b279a2", "pulley": "#4c78a8", "idler": "#72b7b2"}
 
 
+BED_RULES = ("bed-contact", "shells", "bore-open", "needs-supports")  # checks.bed and checks.bores
+
+
 def _r6(x) -> float:
     return float(round(float(x), 6))
 
@@ -257,12 +260,19 @@ class GearChain:
              f"hole ≥ Ø{f['printability'].get('smallest_hole_mm', 0):.2f}, wall ≥ "
              f"{f['printability'].get('thinnest_wall_mm', 0):.2f}, tip ≥ {f['printability'].get('narrowest_tip_mm', 0):.2f}"
              f" mm; {f.get('plates', '?')} build plate(s)"),
+            ("bed", "flat on the bed, one shell, bores open",
+             f"contact ≥ {f['printability'].get('least_bed_contact_mm2', 0):.0f} mm², "
+             f"{sum(len(b) for b in f['printability'].get('bores', {}).values())} bores, "
+             f"{len(f['printability'].get('needs_supports_mm2', {}))} part(s) need supports"),
         ]
         if "kit" in counts:
             rows.append(("kit", "files match the design", ""))
         lines.append(f"{'check':<14}{'result':<8}{'what':<44}figures")
         for name, what, figs in rows:
             c = counts.get(name, {})
+            if name in ("printability", "bed"):  # the bed's rules apart from the other printability rules
+                c = {sev: sum(x.check == "printability" and x.severity == sev and (x.rule in BED_RULES) == (name == "bed")
+                              for x in result.findings) for sev in ("fail", "warn")}
             status = "FAIL" if c.get("fail") else ("warn" if c.get("warn") else "ok")
             lines.append(f"{name:<14}{status:<8}{what:<44}{figs}")
         fails = [x for x in result.findings if x.severity in ("fail", "warn")]
@@ -293,6 +303,41 @@ class GearChain:
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
+
+    def assembly_steps(self, spec: ChainSpec, kit: Kit) -> list[tuple[str, tuple[str, ...]]]:
+        """The chain put together from the base up: base and legs, the drive axle and gear, link 1
+        with its gears, each further link in chain order with its gears (D on the post of the link
+        below, M or the belt's tensioner on its own plate, G under it), the crank, the pen holder."""
+        have = {p.name for p in kit.parts}
+        n = len(spec.mechanism.chain.links)
+        legs = tuple(sorted((x for x in have if x.startswith("leg")), key=lambda x: int(x[3:])))
+        steps = [(f"Press the pegs of the {len(legs)} legs up into the base's holes and stand it on them: the "
+                  "ground post points up.", ("base",) + legs),
+                 ("Put the drive axle down through the base's drive bore, its round part in the bore, and slide the "
+                  "drive gear onto its upper D end, resting on the base's thrust ring.", ("drive_axle", "drive"))]
+        for j in range(1, n + 1):
+            below = "the ground post" if j == 1 else f"B{j - 1}'s distal post"
+            mate = "the drive gear" if j == 1 else (f"M{j - 1}" if f"M{j - 1}" in have else f"D{j - 1}")
+            names = [f"G{j}", f"B{j}"]
+            text = [f"Slide G{j} down over {below}, collar and D-boss up, its teeth in mesh with {mate}; press "
+                    f"link B{j}'s proximal D-hole onto the boss."]
+            if f"belt{j - 1}" in have:
+                text[0] = (f"Slide pulley G{j} down over {below}, collar and D-boss up; press link B{j}'s proximal "
+                           f"D-hole onto the boss; loop belt{j - 1} over D{j - 1} and G{j}"
+                           + (f" and set the tensioner T{j - 1} on B{j - 1}." if f"T{j - 1}" in have else "."))
+                names += [f"belt{j - 1}"] + ([f"T{j - 1}"] if f"T{j - 1}" in have else [])
+            if f"D{j}" in have:
+                text.append(f"Press D{j} onto the D end of {below} above B{j}.")
+                names.append(f"D{j}")
+            if f"M{j}" in have:
+                text.append(f"Put M{j} on B{j}'s idler post, in mesh with D{j}.")
+                names.append(f"M{j}")
+            steps.append((f"Link {j}: " + " ".join(text), tuple(x for x in names if x in have)))
+        steps += [("Press the crank onto the drive axle's lower D end under the base, the handle pointing down.",
+                   ("crank",)),
+                  (f"Press the pen holder's D-spigot down into link B{n}'s distal hole and push the pen into its bore, "
+                   "point up.", ("pen_holder",))]
+        return steps
 
     # --- the report page -------------------------------------------------------------------------
     def report_sections(self, spec: ChainSpec, kit: Kit, result: Result, trace: Trace, files: dict,

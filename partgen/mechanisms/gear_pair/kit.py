@@ -4,12 +4,12 @@ gears turning on them; the resolver from the validated YAML (deg → rad, diamet
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ...config.loader import LoadedDesign, printer_limits
-from ...core.parts import Part
+from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose_z
 from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
@@ -17,6 +17,7 @@ from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, base_plate, bored_gear, shaft
+from ...geometry.printing import least_support_flip
 
 __all__ = ["PairSpec", "PairKit", "resolve_pair", "build_pair"]
 
@@ -117,5 +118,8 @@ def build_pair(s: PairSpec, progress=None) -> PairKit:
     for name, gear in (("gear1", s.gear1), ("gear2", s.gear2)):
         say(name)
         parts.append(Part(name, "gear", bored_gear(gear, s.face_width, circle(s.bore_radius, s.tol, hole=True)),
-                          gear=gear))
+                          gear=gear, bores=(Bore("post", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), 2 * s.axle_radius,
+                                                 s.face_width),)))
+    # each lies on its larger flat face unless the other needs less support
+    parts = [replace(p, print_flip=least_support_flip(p.solid, s.printer.overhang_deg)) for p in parts]
     return PairKit(s, tuple(parts))

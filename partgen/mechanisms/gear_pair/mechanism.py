@@ -144,10 +144,13 @@ class GearPair:
                            transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
                            max_overlap_mm2=float(play["overlap_mm2"].max()), radial_gap_mm=float(radial))
         from ...checks.bed import bed_findings
+        from ...checks.bores import bore_findings
 
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
-        res.figures["printability"] = on_bed
+        found, bores = bore_findings(kit.parts)
+        res.add(*found)
+        res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
     def trace(self, spec: PairSpec, kit: PairKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
@@ -173,6 +176,14 @@ class GearPair:
     def csv(self, trace: Trace) -> str:
         return self.csv_header + "".join(f"{a:.9f},{b:.9f},{c:.9f},{d:.6f}\n" for a, b, c, d in trace.data)
 
+    def assembly_steps(self, spec: PairSpec, kit: PairKit) -> list[tuple[str, tuple[str, ...]]]:
+        """The base, gear 1 on its post, gear 2 on the other post in mesh."""
+        return [("Stand the base on the table, its two posts up.", ("base",)),
+                (f"Slide gear1 ({spec.gear1.teeth} teeth) down over its post until it rests on the base.", ("gear1",)),
+                (f"Slide gear2 ({spec.gear2.teeth} teeth) down over the other post, turning it until its teeth drop into "
+                 "mesh with gear1's; "
+                 "turn gear1 by hand: both turn freely.", ("gear2",))]
+
     def bill_text(self, spec: PairSpec, man: dict, dest, seconds: float) -> str:
         lines = [f"{spec.name}: {spec.gear1.teeth}/{spec.gear2.teeth} teeth, module {spec.gear1.system.module:g} mm, "
                  f"centre distance {spec.centre_distance:.3f} mm"]
@@ -188,6 +199,10 @@ class GearPair:
                  f"  backlash {b['min']:.3f}–{b['max']:.3f} mm (designed {b['designed']:.3f} mm); transmission error "
                  f"{1000 * te['peak_to_peak']:.1f} µm peak to peak; largest overlap {f['max_overlap_mm2']:.4f} mm²; "
                  f"bore over post {f['radial_gap_mm']:.3f} mm radial"]
+        if "printability" in f:
+            from ...checks.bed import bed_summary
+
+            lines.append("  " + bed_summary(f["printability"]))
         lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
         lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
                      + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))

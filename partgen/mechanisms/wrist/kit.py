@@ -4,7 +4,7 @@ for any bend (θ, ψ) of the workspace."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from shapely.geometry import box
@@ -14,7 +14,9 @@ from ...design import spherical as sph
 from .spec import WristSpec
 from ...geometry import wrist as W
 
+from ...core.parts import Bore
 from ...geometry.parts import DFit, Part
+from ...geometry.printing import least_support_flip
 from ...geometry.solid import SLIVER, extrude, float32_sound, print_arrays
 
 __all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max"]
@@ -115,7 +117,9 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
     domes = W.dome_teeth([(r.theta, r.teeth) for r in pair.rows], r_of1, spec.dome_radius, spec.tooth_height)
     segs = max(24, int(round(2 * math.pi * spec.dome_radius / 0.5)))
     bore = extrude(fit.hole(0.01), spec.base_height + A / 4, -spec.base_height - 1.0)
-    parts.append(Part("gear1", "wrist_gear", (turn(cap1) + W.domes_union(domes, 0.0, segs, facets)) - bore))
+    # the shaft comes up into each gear from its flat bottom, to the top of the bore cut
+    shaft = (Bore("shaft", (0.0, 0.0, -spec.base_height), (0.0, 0.0, 1.0), fit.pin_diameter, spec.base_height + A / 4 - 1.0),)
+    parts.append(Part("gear1", "wrist_gear", (turn(cap1) + W.domes_union(domes, 0.0, segs, facets)) - bore, bores=shaft))
     say("gear2 sockets")
     thetas = np.linspace(0.0, theta_max, spec.theta_steps)
     psis = 2 * np.pi * np.arange(spec.psi_steps) / spec.psi_steps
@@ -123,7 +127,7 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
     reach = float(r_of2(np.array([alpha2]))[0]) + 1.0
     sweep, pieces = W.socket_sweep(domes, poses, spec.clearance, reach, segs, turn=facets)
     cap2 = W.revolved_cap(r_of2, alpha2, -spec.base_height, fit.radius + 3.0, spec.tol)
-    parts.append(Part("gear2", "wrist_gear", (turn(cap2) - sweep) - bore))
+    parts.append(Part("gear2", "wrist_gear", (turn(cap2) - sweep) - bore, bores=shaft))
     if spec.cross is not None:  # the second tooth form: an ABENICS cross gear on the same sphere
         say("cross gear")
         from ...geometry.cross_gear import GROW, cross_gear
@@ -131,5 +135,9 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
         half = extrude(box(-r, -r, r, r), r + 1.0, 0.0)  # cut flat at the equator: it prints on that face
         solid = ((cross_gear(spec.cross, grow=GROW * (1 + k / 4)) ^ half)
                  - bore.translate((0, 0, spec.base_height))).simplify(SLIVER)
-        parts.append(Part("cross_gear", "wrist_gear", solid, gear=spec.cross))
+        parts.append(Part("cross_gear", "wrist_gear", solid, gear=spec.cross,
+                          bores=(Bore("shaft", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), fit.pin_diameter,
+                                      spec.base_height + A / 4 - 1.0),)))
+    # each lies on its larger flat face unless the other needs less support
+    parts = [replace(p, print_flip=least_support_flip(p.solid, spec.printer.overhang_deg)) for p in parts]
     return parts, domes, pieces, int(poses.shape[0] * poses.shape[1]), (alpha1, alpha2)

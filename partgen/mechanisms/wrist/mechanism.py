@@ -73,11 +73,14 @@ class Wrist:
         from .checks import check_wrist
 
         from ...checks.bed import bed_findings
+        from ...checks.bores import bore_findings
 
         res = check_wrist(kit, progress=progress)
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
-        res.figures["printability"] = on_bed
+        found, bores = bore_findings(kit.parts)
+        res.add(*found)
+        res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
     def trace(self, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
@@ -110,6 +113,17 @@ class Wrist:
     def csv(self, trace: Trace) -> str:
         return self.csv_header + "".join(f"{t:.9f},{i:.9f},{p:.9f}\n" for t, i, p in trace.data)
 
+    def assembly_steps(self, spec: WristSpec, kit) -> list[tuple[str, tuple[str, ...]]]:
+        """Each gear pressed onto its D-shaft from its flat face, then brought into mesh."""
+        have = {p.name for p in kit.parts}
+        steps = [(f"Press gear1 onto a Ø{spec.shaft_diameter:g} mm D-shaft, the shaft entering its flat face, flat to "
+                  "flat.", ("gear1",)),
+                 ("Press gear2 onto the second shaft the same way; bring its sockets over gear1's dome teeth with the "
+                  "two spheres' centres together, and bend the pair through its workspace by hand.", ("gear2",))]
+        if "cross_gear" in have:
+            steps.append(("Press the cross gear onto its shaft by its flat face, the same way.", ("cross_gear",)))
+        return steps
+
     def bill_text(self, spec: WristSpec, man: dict, dest, seconds: float) -> str:
         lines = [f"{p['name']:<8}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 {p['mass_g']:7.1f} g  "
                  f"{' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm" for p in man["parts"]]
@@ -124,6 +138,10 @@ class Wrist:
                  f"{f['min_engaged_mm3']:.2f} mm³",
                  f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
         lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
+        if "printability" in f:
+            from ...checks.bed import bed_summary
+
+            lines.append("  " + bed_summary(f["printability"]))
         lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
         lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
                      + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
