@@ -265,3 +265,23 @@ def test_default_design_on_a_220mm_printer_packs_b1_and_fails_only_on_tip_width(
         [f.message for f in fails if f.rule != "tip-width"][:5]
     assert all("gears.module_mm ≥" in f.message for f in fails)
     assert not [f for f in result.findings if "does not fit" in f.message]
+
+
+def test_module_1_5_cannot_gear_the_default_chain_and_the_refusal_says_what_can():
+    """#12's example `--set gears.module_mm=1.5` on the default chain cannot build: with 10 mm axles
+    D and G need at least 13 teeth, and at module 1.5 the smallest whole multiples of the Eq 11
+    ratios overrun their links with the design's 1.5 mm tip gap (Eq 12), from first principles:
+    link 9 (S = 34.5 mm, 5/3) needs 25 and 15 teeth, link 10 (S = 30 mm, 7/5) 21 and 15. The
+    refusal names the modules that work; 1.4 mm, one it names, builds."""
+    m, alpha, gap = 1.5, math.radians(20), 1.5
+    x15 = max(0.0, 1 - 15 * math.sin(alpha) ** 2 / 2)  # auto profile shift of 15 teeth (no undercut)
+    tip = lambda z, x=0.0: (z / 2 + 1 + x) * m  # noqa: E731  (tip radius, standard addendum)
+    assert tip(25) + tip(15, x15) + gap > 34.5 and tip(21) + tip(15, x15) + gap > 30.0
+    with pytest.raises(ConfigError) as e:
+        load(CONFIGS / "butterfly.yaml", over=overrides(["gears.module_mm=1.5"]))
+    msg = str(e.value)
+    assert "link 9 (S = 34.500 mm)" in msg and "Eq 11 ratio 5/3" in msg
+    ranges = [tuple(map(float, r.split("–"))) if "–" in r else (float(r),) * 2
+              for r in re.search(r"gears\.module_mm in (.*?) \(or", msg)[1].replace(" mm", "").split(", ")]
+    assert not any(lo <= 1.5 <= hi for lo, hi in ranges) and any(lo <= 1.4 <= hi for lo, hi in ranges)
+    assert load(CONFIGS / "butterfly.yaml", over=overrides(["gears.module_mm=1.4"])).spec.params.system.module == 1.4
