@@ -285,3 +285,26 @@ def test_module_1_5_cannot_gear_the_default_chain_and_the_refusal_says_what_can(
               for r in re.search(r"gears\.module_mm in (.*?) \(or", msg)[1].replace(" mm", "").split(", ")]
     assert not any(lo <= 1.5 <= hi for lo, hi in ranges) and any(lo <= 1.4 <= hi for lo, hi in ranges)
     assert load(CONFIGS / "butterfly.yaml", over=overrides(["gears.module_mm=1.4"])).spec.params.system.module == 1.4
+
+
+@pytest.mark.parametrize("config,key,read", [
+    ("wrist_sphere", "wrist.clearance_radial_mm", lambda spec, pr: (spec.clearance, pr["running"] / 2)),
+    ("wrist_sphere", "wrist.press_fit_clearance_diametral_mm", lambda spec, pr: (spec.press_clearance, pr["press_fit"])),
+    ("bennett_butterfly", "pin.clearance_diametral_mm", lambda spec, pr: (spec.pin_clearance, pr["running"])),
+    ("gear_pair", "axles.clearance_diametral_mm", lambda spec, pr: (2 * (spec.bore_radius - spec.axle_radius),
+                                                                    pr["running"])),
+])
+def test_every_mechanism_takes_its_fits_from_the_printer(config, key, read, tmp_path):
+    """`printer` for a clearance is the fit the printer profile measured (radial: half the diametral),
+    on the wrist, the Bennett linkage and the gear pair as on the chain; a profile without fits is
+    refused on that key."""
+    prof = read_yaml(PRINTERS_DIR / "ender3_v3.yaml")
+    fits = {k.split("_clearance")[0]: v for k, v in prof["fits"].items()}
+    loaded = load(CONFIGS / f"{config}.yaml", over=overrides([f"{key}=printer"], "ender3_v3"))
+    got, want = read(loaded.spec, fits)
+    assert got == pytest.approx(want)
+    bare = tmp_path / "nofits.yaml"
+    bare.write_text(yaml.safe_dump({k: v for k, v in prof.items() if k != "fits"}))
+    with pytest.raises(ConfigError) as e:
+        load(CONFIGS / f"{config}.yaml", over=overrides([f"{key}=printer"], str(bare)))
+    assert e.value.key_path == key and "fits." in str(e.value)

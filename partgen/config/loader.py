@@ -203,6 +203,21 @@ def load_design(path: str | Path, kinds: Mapping[str, type[BaseModel]], over: Ov
     return LoadedDesign(path, design, ppath, printer, data, pdata)
 
 
+def printer_fit(loaded: "LoadedDesign", value, kind: str, key: str) -> float:
+    """A clearance (diametral, mm) as the design gives it, or ``printer``: the ``kind`` fit
+    ("running" or "press_fit") the printer profile's maker measured (``fits.<kind>_clearance_diametral_mm``).
+    ConfigError on ``key`` when the profile gives none."""
+    if value != "printer":
+        return float(value)
+    p = loaded.printer
+    measured = None if p.fits is None else getattr(p.fits, f"{kind}_clearance_diametral_mm")
+    if measured is None:
+        raise ConfigError(loaded.path, key, f"'printer' takes the fit from the printer profile, but {p.name!r} "
+                          f"({loaded.printer_path.name}) gives no fits.{kind}_clearance_diametral_mm: give a number "
+                          "(mm, diametral)")
+    return float(measured)
+
+
 def printer_limits(p: Printer) -> PrinterLimits:
     """The validated printer profile as the kernels read it (mm)."""
     lw = p.line_width

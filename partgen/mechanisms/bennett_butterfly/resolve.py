@@ -7,7 +7,7 @@ import math
 from ...design.bennett_butterfly import BennettButterfly
 from .params import BennettParams
 from ...errors import ConfigError, DesignError
-from ...config.loader import LoadedDesign, printer_limits
+from ...config.loader import LoadedDesign, printer_fit, printer_limits
 
 __all__ = ["resolve_bennett", "MIN_TWIST_DEG"]
 
@@ -40,12 +40,13 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
     if parts.bar_diameter_mm > parts.boss_length_mm:
         raise ConfigError(loaded.path, "parts.bar_diameter_mm", f"{parts.bar_diameter_mm} mm is thicker than a boss is long "
                           f"({parts.boss_length_mm} mm): a bar would stand proud of its boss into the next one on the pin")
+    pin_clearance = printer_fit(loaded, d.pin.clearance_diametral_mm, "running", "pin.clearance_diametral_mm")
     if len(set(cw.links)) != 3:
         raise ConfigError(loaded.path, "counterweights.links", "three different links")
-    if d.pin.diameter_mm + d.pin.clearance_diametral_mm >= parts.boss_diameter_mm - 2 * p.min_wall:
+    if d.pin.diameter_mm + pin_clearance >= parts.boss_diameter_mm - 2 * p.min_wall:
         raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore leaves less than the printer's {p.min_wall} mm "
                           f"wall in a {parts.boss_diameter_mm} mm boss")
-    if d.pin.diameter_mm + d.pin.clearance_diametral_mm < p.min_hole_diameter_mm:
+    if d.pin.diameter_mm + pin_clearance < p.min_hole_diameter_mm:
         raise ConfigError(loaded.path, "pin.diameter_mm", f"the bore is below the printer's smallest reliable hole "
                           f"({p.min_hole_diameter_mm} mm)")
     need = 2 * parts.boss_length_mm + parts.axial_gap_mm
@@ -66,7 +67,7 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
         workspace=(math.radians(k.workspace_deg[0]), math.radians(k.workspace_deg[1])),
         boss_radius=parts.boss_diameter_mm / 2, boss_length=parts.boss_length_mm, axial_gap=parts.axial_gap_mm,
         bar_radius=parts.bar_diameter_mm / 2, pin_radius=d.pin.diameter_mm / 2,
-        pin_clearance=d.pin.clearance_diametral_mm, pin_density=d.pin.density_g_cm3 / 1000.0, pin_kind=d.pin.kind,
+        pin_clearance=pin_clearance, pin_density=d.pin.density_g_cm3 / 1000.0, pin_kind=d.pin.kind,
         offset_step=parts.offset_step_mm, offset_max=parts.offset_max_mm, cw_links=tuple(cw.links),
         cw_distance=tuple(cw.distance_mm), cw_wall=cw.wall_mm, cw_clearance=cw.clearance_diametral_mm,
         slug_kind=cw.slugs.kind, slug_diameter=cw.slugs.diameter_mm, slug_lengths=tuple(sorted(cw.slugs.lengths_mm)),

@@ -61,7 +61,7 @@ DOWEL_LENGTHS_10_MM = [18.0, 20.0, 22.0, 24.0, 26.0, 28.0, 30.0, 32.0, 35.0, 40.
 class Pin(Strict):
     kind: Annotated[str, Field(max_length=200)] = "steel dowel pin (ISO 2338/8734)"
     diameter_mm: Length
-    clearance_diametral_mm: Gap
+    clearance_diametral_mm: Gap | Literal["printer"]  # printer: the running fit the printer profile measured
     density_g_cm3: Density = 7.85
     stock_lengths_mm: Annotated[list[Length], Field(min_length=1, max_length=200)] = Field(
         default=DOWEL_LENGTHS_10_MM, description="lengths the pins can be bought in (the stock list for Ø10)")

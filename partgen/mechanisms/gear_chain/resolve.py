@@ -18,7 +18,7 @@ from ...design.mechanism import BeltSettings, Mechanism, MechanismInputs, auto_m
 from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
-from ...config.loader import LoadedDesign, load_design, printer_limits
+from ...config.loader import LoadedDesign, load_design, printer_fit, printer_limits
 from .params import CheckSettings, Joints, KitParams
 
 __all__ = ["resolve", "resolve_spec", "ChainSpec", "load"]
@@ -168,16 +168,9 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
 
 def _fit(loaded: LoadedDesign, kind: str) -> float:
     """A joint clearance (diametral, mm): as given, or ``printer``: the fit the printer's profile measured."""
-    j, p = loaded.design.joints, loaded.printer
+    j = loaded.design.joints
     value = j.running_diametral if kind == "running" else j.press_fit_diametral
-    if value != "printer":
-        return float(value)
-    measured = None if p.fits is None else getattr(p.fits, f"{kind}_clearance_diametral_mm")
-    if measured is None:
-        raise ConfigError(loaded.path, f"joints.{kind}_clearance_diametral_mm",
-                          f"'printer' takes the fit from the printer profile, but {p.name!r} ({loaded.printer_path.name}) "
-                          f"gives no fits.{kind}_clearance_diametral_mm: give a number (mm, diametral)")
-    return float(measured)
+    return printer_fit(loaded, value, kind, f"joints.{kind}_clearance_diametral_mm")
 
 
 def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:

@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, printer_limits
+from ...config.loader import LoadedDesign, printer_fit, printer_limits
 from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose_z
@@ -67,7 +67,8 @@ def resolve_pair(loaded: LoadedDesign) -> PairSpec:
         except ToothSystemError as e:
             raise ConfigError(loaded.path, "gears.profile_shift" if e.field == "profile_shift" else f"gears.teeth[{i}]",
                               e.problem) from None
-    bore = d.axles.diameter_mm / 2 + d.axles.clearance_diametral_mm / 2
+    bore = d.axles.diameter_mm / 2 + printer_fit(loaded, d.axles.clearance_diametral_mm, "running",
+                                                 "axles.clearance_diametral_mm") / 2
     for i, gear in enumerate((g1, g2)):
         if bore + p.min_wall >= gear.root_radius:
             raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"a {gear.teeth}-tooth gear's root circle "

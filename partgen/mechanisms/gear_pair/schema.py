@@ -23,7 +23,7 @@ class PairGears(Strict):
 
 class Axles(Strict):
     diameter_mm: Length = 8.0  # the posts standing on the base, each gear turning on one
-    clearance_diametral_mm: Gap = 0.4  # bore over post
+    clearance_diametral_mm: Gap | Literal["printer"] = 0.4  # bore over post; printer: the profile's running fit
     axial_gap_mm: Gap = 0.5  # between the base and a gear's face
 
 

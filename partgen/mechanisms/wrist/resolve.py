@@ -8,7 +8,7 @@ from ...design.gearing import ToothSystem, make_gear
 from ...design.involute import max_tip_fillet_coeff
 from ...errors import ConfigError
 from .spec import WristSpec
-from ...config.loader import LoadedDesign, printer_limits
+from ...config.loader import LoadedDesign, printer_fit, printer_limits
 
 __all__ = ["resolve_wrist"]
 
@@ -68,8 +68,10 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
     return WristSpec(
         name=d.name, I=w.nominal_ratio, A=w.centre_distance_mm, long_pitch=w.longitudinal_pitch_mm,
         ring_teeth=tuple(w.ring_teeth), dome_radius=w.tooth.radius_mm, tooth_height=w.tooth.height_mm,
-        clearance=w.clearance_radial_mm, max_bend=math.radians(w.max_bend_deg), theta_steps=w.sweep.theta_steps,
+        clearance=printer_fit(loaded, w.clearance_radial_mm, "running", "wrist.clearance_radial_mm") / 2
+        if w.clearance_radial_mm == "printer" else w.clearance_radial_mm, max_bend=math.radians(w.max_bend_deg), theta_steps=w.sweep.theta_steps,
         psi_steps=w.sweep.psi_steps, shaft_diameter=w.shaft_diameter_mm,
-        press_clearance=w.press_fit_clearance_diametral_mm, base_height=w.base_height_mm, tol=w.chord_tolerance_mm,
+        press_clearance=printer_fit(loaded, w.press_fit_clearance_diametral_mm, "press_fit",
+                                    "wrist.press_fit_clearance_diametral_mm"), base_height=w.base_height_mm, tol=w.chord_tolerance_mm,
         density=d.material.density_g_cm3 / 1000.0, material=d.material.name,
         printer=printer_limits(p), cross=cross)

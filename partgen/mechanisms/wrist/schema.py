@@ -57,11 +57,12 @@ class Wrist(Strict):
     longitudinal_pitch_mm: Length
     ring_teeth: Annotated[list[Annotated[int, Field(ge=1, le=200)]], Field(min_length=2, max_length=20)] = [1, 6, 12]
     tooth: Tooth
-    clearance_radial_mm: Finite
+    # ``printer``: half the running fit (diametral) the printer profile's maker measured
+    clearance_radial_mm: Finite | Literal["printer"]
     max_bend_deg: Annotated[float, Field(gt=0, lt=180)]
     sweep: Sweep = Sweep()
     shaft_diameter_mm: Length
-    press_fit_clearance_diametral_mm: Finite = 0.05
+    press_fit_clearance_diametral_mm: Finite | Literal["printer"] = 0.05  # printer: the profile's press fit
     base_height_mm: Length = 8.0
     chord_tolerance_mm: Annotated[float, Field(ge=1e-3, le=0.5)] = 0.02
     cross_gear: CrossGear | None = None
