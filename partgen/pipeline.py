@@ -133,6 +133,8 @@ def build(path, dest=None, progress=None, notify=None, over: Overrides | None = 
     design = {**mech.design_summary(spec, kit)}
     design.setdefault("kind", mech.kind)
     design.setdefault("config", loaded.path.name)
+    design.setdefault("printer", kit.printer.name)  # every manifest says what it prints on and in what
+    design.setdefault("material", kit.material)
     man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress)
     return Built(loaded, kit, man, claim.dest)
 
