@@ -22,7 +22,8 @@ from .export.kit import atomic_dir, group_parts, printed, write_kit
 from .export.outputs import claim_output
 from .mechanisms import REGISTRY, load_design
 
-__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
+__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides", "design_digest",
+           "tolerance_result"]
 
 
 @dataclass(frozen=True)
@@ -104,6 +105,26 @@ def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
         _KITS.clear()
         _KITS[key] = kit
     return _KITS[key]
+
+
+def design_digest(raw: LoadedDesign) -> str:
+    """A fingerprint of a design as loaded (its YAML with the overrides, and its printer)."""
+    import hashlib
+
+    return hashlib.sha256(dump_yaml(raw.document()) + b"\0" + dump_yaml(raw.printer_document())).hexdigest()[:16]
+
+
+def tolerance_result(raw: LoadedDesign, kit_dir: Path | None) -> dict | None:
+    """The result `partgen tolerance` wrote for this design (``<kit>/tolerance/result.json`` or
+    ``out/<name>/tolerance/result.json``), if it was made from the same design and printer."""
+    import json
+
+    folder = (kit_dir / "tolerance") if kit_dir else Path("out") / raw.design.name / "tolerance"
+    try:
+        data = json.loads((folder / "result.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError, UnicodeDecodeError):
+        return None
+    return data if isinstance(data, dict) and data.get("design_digest") == design_digest(raw) else None
 
 
 def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None):

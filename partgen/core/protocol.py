@@ -13,7 +13,7 @@ from .findings import Result
 from .parts import Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section"]
+__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section", "TOLERANCE_HOOK", "tolerance_hook"]
 
 
 @runtime_checkable
@@ -107,3 +107,17 @@ class Mechanism(Protocol):
     def report_sections(self, spec, kit: Kit, result: Result, trace: Trace, pictures) -> list[Section]: ...
     def bill_text(self, spec, manifest: dict) -> str: ...
     def check_text(self, spec, result: Result) -> str: ...
+
+    # Optional (see ``tolerance_hook``): a mechanism that offers `partgen tolerance` defines
+    # tolerance_model(spec, kit, result, accuracy_mm) -> design.tolerance.MarginModel: the margins
+    # of ``result`` (the nominal check of ``kit``) that decide whether it turns, as linear functions
+    # of the printed features' deviations for a printer accuracy of ± accuracy_mm.
+
+
+TOLERANCE_HOOK = "tolerance_model"
+
+
+def tolerance_hook(mechanism) -> Callable | None:
+    """The mechanism's ``tolerance_model`` (bound), or None when it offers no tolerance study."""
+    hook = getattr(mechanism, TOLERANCE_HOOK, None)
+    return hook if callable(hook) else None
