@@ -23,6 +23,30 @@ __all__ = ["CONNECT_TIMEOUT_S", "cluster", "run", "default_workers", "Counter"]
 CONNECT_TIMEOUT_S = 8.0  # an unreachable --scheduler is an error within 10 s, never a hang
 
 
+def _reachable(address: str) -> str | None:
+    """Why a tcp:// scheduler address cannot be reached (a refused or silent port), or None: a
+    quick probe, so a wrong address fails at once instead of after Dask's retries."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if "://" not in address:
+        address = "tcp://" + address
+    u = urlsplit(address)
+    if u.scheme not in ("tcp", "tls"):
+        return None  # other transports: leave it to Dask
+    try:
+        host, port = u.hostname, u.port
+    except ValueError as e:
+        return f"not an address: {e}"
+    if not host or not port:
+        return "give it as tcp://HOST:PORT"
+    try:
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S / 2):
+            return None
+    except OSError as e:
+        return e.strerror or type(e).__name__
+
+
 def default_workers() -> int:
     """The cores this process may use."""
     try:
@@ -36,13 +60,16 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
     """A connected ``distributed.Client``: to ``scheduler`` (an address such as
     ``tcp://10.0.0.5:8786``; ``OptionError`` on --scheduler when it cannot be reached within
     CONNECT_TIMEOUT_S), or to a new ``LocalCluster`` of ``workers`` single-threaded workers
-    (``processes=False``: threads of this process, quick to start, for tests)."""
+    (``processes=False``, and always for one worker: a thread of this process, quick to start)."""
     import dask
     from distributed import Client, LocalCluster
 
     with dask.config.set({"distributed.comm.timeouts.connect": f"{CONNECT_TIMEOUT_S}s",
                           "distributed.admin.tick.limit": "1h"}):
         if scheduler is not None:
+            why = _reachable(scheduler)
+            if why is not None:
+                raise OptionError("--scheduler", scheduler, f"cannot reach a Dask scheduler there ({why})")
             try:
                 client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False)
             except (OSError, TimeoutError, ValueError) as e:
@@ -54,7 +81,8 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
             finally:
                 client.close()
             return
-        lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1, processes=processes,
+        lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1,
+                          processes=processes and (workers or default_workers()) > 1,
                           dashboard_address=None, silence_logs=logging.CRITICAL)
         client = Client(lc, set_as_default=False)
         try:

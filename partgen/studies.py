@@ -21,11 +21,11 @@ from pathlib import Path
 from . import cluster as C
 from . import pipeline
 from .core.protocol import tolerance_hook
-from .design.tolerance import ChunkTally, add_tallies, chunk_sizes, run_chunk, summarise
+from .design.tolerance import ChunkTally, MarginModel, add_tallies, chunk_sizes, run_chunk, summarise
 from .errors import ConfigError, OptionError
 from .export.outputs import open_incremental
 
-__all__ = ["CHUNK", "ToleranceRun", "tolerance", "nominal_model"]
+__all__ = ["CHUNK", "ToleranceRun", "tolerance", "sample", "nominal_model"]
 
 CHUNK = 2000  # samples per task: a few tens of ms of numpy, well over the scheduler's per-task cost
 FILES = ["chunks.jsonl", "result.json"]
@@ -82,6 +82,48 @@ def _resume_state(path: Path, header: dict) -> dict[int, ChunkTally]:
     return done
 
 
+def sample(client, model: MarginModel, samples: int, seed: int, claim=None, resume: bool = False,
+           header: dict | None = None, progress: bool = False, chunk: int = CHUNK) -> tuple[ChunkTally, dict]:
+    """Draw ``samples`` of ``model`` on ``client``'s workers in chunks of ``chunk``; with a
+    ``claim`` (an output folder checked before any work), append each chunk to its chunks.jsonl as
+    it arrives (``resume``: keep the chunks a previous run with the same header finished there).
+    Returns the tallies added in chunk order, and facts of the run (chunks, resumed_chunks,
+    workers, seconds, dest)."""
+    sizes = chunk_sizes(samples, chunk)
+    header = {**(header or {}), "model": model.digest(), "seed": int(seed), "samples": int(samples),
+              "chunk": int(chunk)}
+    done: dict[int, ChunkTally] = {}
+    out = None
+    if claim is not None:
+        out = claim.dest
+        if resume:
+            done = _resume_state(out / "chunks.jsonl", header)
+        open_incremental(claim, FILES, keep=resume and bool(done))
+        if not done:
+            (out / "chunks.jsonl").write_text(json.dumps(header) + "\n", encoding="utf-8")
+    todo = [(i, (int(seed), i, n)) for i, n in enumerate(sizes) if i not in done]
+    counter = C.Counter("samples", samples, progress, sum(t.n for t in done.values()))
+    sink = open(out / "chunks.jsonl", "a", encoding="utf-8") if out is not None else None
+    got = dict(done)
+
+    def keep(key, tally):
+        got[key] = tally
+        if sink is not None:
+            sink.write(json.dumps(tally.to_dict()) + "\n")
+            sink.flush()
+        counter(tally.n)
+    t1 = time.perf_counter()
+    try:
+        C.run(client, run_chunk, model, todo, keep, None, "tolerance")
+    finally:
+        if sink is not None:
+            sink.close()
+    info = {"chunks": len(sizes), "resumed_chunks": len(done), "computed_chunks": len(todo),
+            "workers": len(client.scheduler_info().get("workers", {})),
+            "seconds": round(time.perf_counter() - t1, 3), "dest": out}
+    return add_tallies(got.values()), info
+
+
 def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int = 0, workers: int | None = None,
               scheduler: str | None = None, dest=None, resume: bool = False, check_samples: int | None = None,
               over=None, progress: bool = False, processes: bool = True, write: bool = True,
@@ -105,45 +147,18 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
     with C.cluster(workers, scheduler, processes) as client:  # an unreachable scheduler: exit 2, nothing written
         t_cluster = time.perf_counter() - t0
         model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples)
-        sizes = chunk_sizes(samples, chunk)
-        header = {"study": "tolerance", "design": pipeline.design_digest(raw), "model": model.digest(), "seed": int(seed),
-                  "samples": int(samples), "chunk": int(chunk)}
-        done: dict[int, ChunkTally] = {}
-        out = None
-        if claim is not None:
-            out = claim.dest
-            if resume:
-                done = _resume_state(out / "chunks.jsonl", header)
-            open_incremental(claim, FILES, keep=resume and bool(done))
-            if not done:
-                (out / "chunks.jsonl").write_text(json.dumps(header) + "\n", encoding="utf-8")
-        todo = [(i, (int(seed), i, n)) for i, n in enumerate(sizes) if i not in done]
-        counter = C.Counter("samples", samples, progress, sum(t.n for t in done.values()))
-        sink = open(out / "chunks.jsonl", "a", encoding="utf-8") if out is not None else None
-        got = dict(done)
-
-        def keep(key, tally):
-            got[key] = tally
-            if sink is not None:
-                sink.write(json.dumps(tally.to_dict()) + "\n")
-                sink.flush()
-            counter(tally.n)
-        t1 = time.perf_counter()
-        try:
-            C.run(client, run_chunk, model, todo, keep, None, "tolerance")
-        finally:
-            if sink is not None:
-                sink.close()
-        t_run = time.perf_counter() - t1
-        nworkers = len(client.scheduler_info().get("workers", {}))
-    summary = summarise(model, add_tallies(got.values()))
+        header = {"study": "tolerance", "design": pipeline.design_digest(raw), "seed": int(seed)}
+        total, info = sample(client, model, samples, seed, claim, resume, header, progress, chunk)
+    summary = summarise(model, total)
     summary.update({"design": raw.design.name, "kind": loaded.mechanism.kind, "config": str(loaded.path),
-                    "design_digest": header["design"], "model_digest": header["model"], "seed": int(seed),
-                    "chunk": int(chunk), "chunks": len(sizes), "resumed_chunks": len(done),
+                    "design_digest": header["design"], "model_digest": model.digest(), "seed": int(seed),
+                    "chunk": int(chunk), "chunks": info["chunks"], "resumed_chunks": info["resumed_chunks"],
                     "nominal_check_ok": nominal.ok, "accuracy_source": "--accuracy-mm" if accuracy_mm is not None
                     else f"printer {raw.printer.name} xy_accuracy_mm",
-                    "workers": nworkers, "seconds": {"cluster": round(t_cluster, 3), "nominal_check": round(check_s, 3),
-                                                     "samples": round(t_run, 3)}})
+                    "workers": info["workers"], "seconds": {"cluster": round(t_cluster, 3),
+                                                            "nominal_check": round(check_s, 3),
+                                                            "samples": info["seconds"]}})
+    out = info["dest"]
     if out is not None:
         _write_atomic(out / "result.json", json.dumps(_json_safe(summary), indent=1))
     return ToleranceRun(loaded, summary, out)

@@ -206,6 +206,10 @@ def wilson(k: int, n: int, z: float = Z95) -> tuple[float, float]:
     """Wilson score interval of a proportion k/n (95 % by default)."""
     if n <= 0:
         return (0.0, 1.0)
+    if k == 0:
+        return (0.0, z * z / (n + z * z))
+    if k == n:
+        return (n / (n + z * z), 1.0)
     p = k / n
     den = 1 + z * z / n
     centre = (p + z * z / (2 * n)) / den
