@@ -25,7 +25,7 @@ from .design.tolerance import ChunkTally, MarginModel, add_tallies, chunk_sizes,
 from .errors import ConfigError, OptionError
 from .export.outputs import open_incremental
 
-__all__ = ["CHUNK", "ToleranceRun", "tolerance", "sample", "nominal_model"]
+__all__ = ["CHUNK", "ToleranceRun", "tolerance", "sample", "nominal_model", "Vary", "parse_vary", "sweep_points", "sweep_point", "sweep"]
 
 CHUNK = 2000  # samples per task: a few tens of ms of numpy, well over the scheduler's per-task cost
 FILES = ["chunks.jsonl", "result.json"]
@@ -174,3 +174,179 @@ def _json_safe(v):
     if isinstance(v, float) and not math.isfinite(v):
         return None
     return v
+
+
+# --------------------------------------------------------------------------------------------- sweep
+@dataclass(frozen=True)
+class Vary:
+    """One ``--vary KEY=START:STOP:STEPS``: a key path (as --set) and its range."""
+
+    key: str
+    start: float
+    stop: float
+    steps: int
+    integer: bool  # START and STOP were whole numbers: every value is rounded to a whole number
+    text: str
+
+    def values(self) -> list:
+        import numpy as np
+
+        v = np.linspace(self.start, self.stop, self.steps) if self.steps > 1 else np.array([self.start])
+        return [int(round(x)) for x in v] if self.integer else [float(round(x, 9)) for x in v]
+
+
+def parse_vary(text: str) -> Vary:
+    """``KEY=START:STOP:STEPS`` → Vary; ``OptionError`` on --vary for anything else."""
+    key, eq, rng = text.partition("=")
+    key = key.strip()
+    parts = rng.split(":")
+    if not eq or not key or len(parts) != 3:
+        raise OptionError("--vary", text, "expected KEY=START:STOP:STEPS (gears.module_mm=1.2:1.6:5)")
+    try:
+        lo, hi = float(parts[0]), float(parts[1])
+    except ValueError:
+        raise OptionError("--vary", text, "START and STOP must be numbers") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise OptionError("--vary", text, "START and STOP must be finite numbers")
+    try:
+        steps = int(parts[2], 10)
+    except ValueError:
+        raise OptionError("--vary", text, "STEPS must be a whole number of points") from None
+    if not 1 <= steps <= 10_000:
+        raise OptionError("--vary", text, "STEPS must be 1 to 10,000 points")
+    integer = all(p.strip().lstrip("+-").isdigit() for p in parts[:2])
+    return Vary(key, lo, hi, steps, integer, text)
+
+
+def sweep_points(varies: list[Vary], random: int | None = None, seed: int = 0) -> list[dict]:
+    """The design points: the grid of every --vary's values, or ``random`` points drawn uniformly in
+    the box they span (seeded; whole-number keys drawn as whole numbers)."""
+    import itertools
+
+    import numpy as np
+
+    if random is None:
+        return [dict(zip([v.key for v in varies], combo)) for combo in itertools.product(*(v.values() for v in varies))]
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
+    out = []
+    for _ in range(random):
+        point = {}
+        for v in varies:
+            x = rng.uniform(min(v.start, v.stop), max(v.start, v.stop))
+            point[v.key] = int(round(x)) if v.integer else float(round(x, 9))
+        out.append(point)
+    return out
+
+
+def _sets(values: dict, base_sets=()) -> tuple:
+    from .config.overrides import parse_set
+
+    return tuple(base_sets) + tuple(parse_set(f"{k}={v!r}") for k, v in values.items())
+
+
+def sweep_point(shared: dict, index: int, values: dict) -> dict:
+    """One design point built and checked (a task: a pure function of the design and the values).
+    A point the design refuses is a row with status "refused" and the reason."""
+    from .config.overrides import Overrides
+    from .errors import PartgenError
+
+    t0 = time.perf_counter()
+    row = {"point": index, "values": values, "status": "refused", "ok": False, "failures": None,
+           "first_failure": None, "mass_g": None, "size_mm": None, "parts": None, "least_clearance_mm": None,
+           "jam_probability": None, "jam_ci95_low": None, "jam_ci95_high": None}
+    over = Overrides(_sets(values, shared["sets"]), shared["printer"])
+    try:
+        loaded = pipeline.load(shared["config"], over=over)
+        kit = pipeline.make_kit(loaded)
+        result = loaded.mechanism.check(loaded.spec, kit, shared["check_samples"], None)
+    except PartgenError as e:
+        row["first_failure"] = str(e)
+        row["seconds"] = round(time.perf_counter() - t0, 3)
+        return row
+    fails = [f for f in result.findings if f.severity == "fail"]
+    groups = pipeline.printed_groups(kit)
+    close = result.figures.get("motion", {}).get("closest_approach")
+    row.update(status="pass" if result.ok else "fail", ok=result.ok, failures=len(fails),
+               first_failure=f"{fails[0].check}: {fails[0].message}" if fails else None,
+               mass_g=round(sum(len(g) * float(g[0].mesh.volume) for g in groups) * kit.density, 2),
+               size_mm=round(max(float(max(g[0].mesh.extents)) for g in groups), 2), parts=len(kit.parts),
+               least_clearance_mm=None if close is None else float(close["mm"]))
+    m = shared["tolerance_samples"]
+    hook = tolerance_hook(loaded.mechanism)
+    if m and hook is not None:
+        model = hook(loaded.spec, kit, result, kit.printer.xy_accuracy if shared["accuracy"] is None
+                     else shared["accuracy"])
+        total = add_tallies([run_chunk(model, shared["seed"], i, n) for i, n in enumerate(chunk_sizes(m, CHUNK))])
+        s = summarise(model, total)
+        row.update(jam_probability=s["overall"]["probability"], jam_ci95_low=s["overall"]["ci95"][0],
+                   jam_ci95_high=s["overall"]["ci95"][1])
+    row["seconds"] = round(time.perf_counter() - t0, 3)
+    return row
+
+
+def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_samples: int | None = None,
+          accuracy_mm: float | None = None, seed: int = 0, workers: int | None = None, scheduler: str | None = None,
+          check_samples: int | None = None, over=None, progress: bool = False, processes: bool = True) -> dict:
+    """A design-space study of ``config`` (see `partgen sweep`). Every --vary is checked before any
+    work (its key must exist in the design's schema, START and STOP must validate there), so bad
+    input writes nothing. Rows are appended to ``dest``/points.jsonl as they arrive; at the end
+    points.csv (and points.parquet with pyarrow) and index.html are written."""
+    from .config.overrides import Overrides
+    from .export.studies import sweep_csv, sweep_page, sweep_parquet
+    from .mechanisms import load_design
+
+    if not varies:
+        raise OptionError("--vary", "", "give at least one KEY=START:STOP:STEPS")
+    vs = [parse_vary(t) for t in varies]
+    if len({v.key for v in vs}) != len(vs):
+        raise OptionError("--vary", varies[-1], "a key is varied twice")
+    if random is not None and random <= 0:
+        raise OptionError("--random", str(random), "must be at least 1 point")
+    if tolerance_samples is not None and tolerance_samples <= 0:
+        raise OptionError("--tolerance-samples", str(tolerance_samples), "must be at least 1")
+    over = over or Overrides()
+    raw = load_design(config, over)  # the design itself must be valid
+    for v in vs:
+        for x in {v.start, v.stop}:
+            val = int(round(x)) if v.integer else x
+            try:
+                load_design(config, Overrides(_sets({v.key: val}, over.sets), over.printer))
+            except ConfigError as e:
+                raise OptionError("--vary", v.text, f"{v.key}={val:g} is not a valid design value: "
+                                  f"{getattr(e, 'problem', e)}") from None
+    points = sweep_points(vs, random, seed)
+    if len(points) > 100_000:
+        raise OptionError("--vary", varies[-1], f"{len(points):,} points: at most 100,000")
+    claim = pipeline.output_claim(raw, Path(dest) if dest else Path("out") / raw.design.name / "sweep", "sweep", None,
+                                  "-o")
+    shared = {"config": str(config), "sets": tuple(over.sets), "printer": over.printer, "check_samples": check_samples,
+              "tolerance_samples": tolerance_samples, "accuracy": accuracy_mm, "seed": int(seed)}
+    keys = [v.key for v in vs]
+    t0 = time.perf_counter()
+    with C.cluster(workers, scheduler, processes) as client:
+        out = open_incremental(claim, ["points.jsonl", "points.csv", "points.parquet", "index.html"])
+        rows: dict[int, dict] = {}
+        counter = C.Counter("points", len(points), progress)
+        with open(out / "points.jsonl", "w", encoding="utf-8") as sink:
+            def keep(key, row):
+                rows[key] = row
+                sink.write(json.dumps(_json_safe(row)) + "\n")
+                sink.flush()
+                counter()
+            C.run(client, sweep_point, shared, [(i, (i, p)) for i, p in enumerate(points)], keep, None, "sweep")
+        nworkers = len(client.scheduler_info().get("workers", {}))
+    ordered = [rows[i] for i in sorted(rows)]
+    _write_atomic(out / "points.csv", sweep_csv(ordered, keys))
+    pq = sweep_parquet(ordered, keys)
+    if pq is not None:
+        tmp = out / f".points.parquet.tmp-{os.getpid()}"
+        tmp.write_bytes(pq)
+        os.replace(tmp, out / "points.parquet")
+    sub = (f"{raw.path.name}: {len(points)} points, " + ", ".join(v.text for v in vs)
+           + (f"; {random} random points, seed {seed}" if random else "")
+           + (f"; P(jam) from {tolerance_samples:,} simulated prints each" if tolerance_samples else ""))
+    _write_atomic(out / "index.html", sweep_page(ordered, keys, f"partgen sweep: {raw.design.name}", sub))
+    return {"design": raw.design.name, "points": len(points), "keys": keys, "dest": str(out), "workers": nworkers,
+            "seconds": round(time.perf_counter() - t0, 3),
+            "pass": sum(r["status"] == "pass" for r in ordered), "fail": sum(r["status"] == "fail" for r in ordered),
+            "refused": sum(r["status"] == "refused" for r in ordered), "rows": ordered}

@@ -22,6 +22,7 @@ from . import check as check_cmd
 from . import report as report_cmd
 from . import trace as trace_cmd
 from . import tolerance as tolerance_cmd
+from . import sweep as sweep_cmd
 from .common import print_json
 
 __all__ = ["main", "entry", "Interrupted"]
@@ -56,6 +57,7 @@ def parser() -> argparse.ArgumentParser:
     trace_cmd.add_parser(sub)
     report_cmd.add_parser(sub)
     tolerance_cmd.add_parser(sub)
+    sweep_cmd.add_parser(sub)
     return ap
 
 
