@@ -56,11 +56,12 @@ def default_workers() -> int:
 
 
 @contextlib.contextmanager
-def cluster(workers: int | None = None, scheduler: str | None = None, processes: bool = True):
+def cluster(workers: int | None = None, scheduler: str | None = None, processes: bool | None = None):
     """A connected ``distributed.Client``: to ``scheduler`` (an address such as
     ``tcp://10.0.0.5:8786``; ``OptionError`` on --scheduler when it cannot be reached within
     CONNECT_TIMEOUT_S), or to a new ``LocalCluster`` of ``workers`` single-threaded workers
-    (``processes=False``, and always for one worker: a thread of this process, quick to start)."""
+    (``processes``: True, worker processes; False, threads of this process, quick to start; None,
+    processes for more than one worker, a thread for one)."""
     import dask
     from distributed import Client, LocalCluster
 
@@ -82,7 +83,7 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
                 client.close()
             return
         lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1,
-                          processes=processes and (workers or default_workers()) > 1,
+                          processes=(workers or default_workers()) > 1 if processes is None else processes,
                           dashboard_address=None, silence_logs=logging.CRITICAL)
         client = Client(lc, set_as_default=False)
         try:

@@ -51,6 +51,8 @@ def add_parser(sub) -> None:
                    help="crank angles of the nominal check (default: the config's checks.samples)")
     p.add_argument("--max-jam-probability", type=_unit_float, default=None, metavar="P",
                    help="exit 1 when the probability that the kit jams is above P")
+    p.add_argument("--chunk", type=bounded_int(1, 10_000_000), default=None,
+                   help="samples per task (default 1000; with the seed it fixes the result: raise it for many workers)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted run with the same settings")
     p.add_argument("-o", "--out", default=None, help="folder for chunks.jsonl and result.json "
                    "(default <kit>/tolerance or out/<name>/tolerance)")
@@ -94,7 +96,8 @@ def run(args) -> int:
     from .. import studies
 
     res = studies.tolerance(args.target, args.samples, args.accuracy_mm, args.seed, args.workers, args.scheduler,
-                            args.out, args.resume, args.check_samples, overrides(args), progress=not args.json)
+                            args.out, args.resume, args.check_samples, overrides(args), progress=not args.json,
+                            **({"chunk": args.chunk} if args.chunk else {}))
     r = res.result
     limit = args.max_jam_probability
     failed = limit is not None and r["overall"]["probability"] > limit
