@@ -282,6 +282,11 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     sections = mech.report_sections(spec, kit, result, tr, files, {})
     own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
     sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit)) if x[0] not in own]
+    tol = tolerance_result(raw, kit_dir)
+    if tol is not None:  # `partgen tolerance` ran on this very design: its result is a section
+        from .export.studies import tolerance_section
+
+        sections.append(tolerance_section(tol))
     if plates_png:
         sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
                                          f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "

@@ -151,3 +151,19 @@ def test_cli_bad_input(tmp_path, capsys):
     assert time.perf_counter() - t0 < 10
     assert "--scheduler" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_report_section_of_a_written_result(nominal, tmp_path):
+    from partgen.export.studies import tolerance_section
+
+    loaded, _, _ = nominal["butterfly_liu2017"]
+    r = run_local(model_of(nominal, "butterfly_liu2017", FORTUS), 1000)
+    r.update(design_digest=pipeline.design_digest(loaded.raw), seed=0, accuracy_source="test")
+    (tmp_path / "tolerance").mkdir()
+    (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
+    assert pipeline.tolerance_result(loaded.raw, tmp_path) == json.loads(json.dumps(r))
+    title, body = tolerance_section(r)
+    assert title == "Tolerance" and "D10–G11" in body and body.count("<img") == 1
+    r["design_digest"] = "another design"
+    (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
+    assert pipeline.tolerance_result(loaded.raw, tmp_path) is None
