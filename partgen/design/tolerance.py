@@ -38,10 +38,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["KINDS", "Feature", "Margin", "MarginModel", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
+__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "MarginModel", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
            "wilson", "summarise", "chunk_sizes"]
 
 KINDS = ("hole", "pin", "tooth", "position", "outline", "height")
+GROUPS = ("joint", "mesh", "clearance")
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile
 
 
@@ -135,6 +136,7 @@ class ChunkTally:
     index, n : the chunk's index and its number of samples.
     jams : samples in which any margin < 0.
     unit_jams : (U,) samples in which the unit jams (any of its margins < 0).
+    group_jams : (3,) samples in which any joint, any mesh, any pair (GROUPS) jams.
     margin_jams : (K,) samples in which each margin < 0.
     share : (F,) each feature's share of the jams: for every margin that goes below 0 in a
         sample, the features that pushed it down share one jam in proportion to how far each did.
@@ -144,17 +146,20 @@ class ChunkTally:
     n: int
     jams: int
     unit_jams: np.ndarray
+    group_jams: np.ndarray
     margin_jams: np.ndarray
     share: np.ndarray
 
     def to_dict(self) -> dict:
         return {"index": self.index, "n": self.n, "jams": self.jams, "unit_jams": self.unit_jams.tolist(),
+                "group_jams": self.group_jams.tolist(),
                 "margin_jams": self.margin_jams.tolist(), "share": [float(x) for x in self.share]}
 
     @classmethod
     def from_dict(cls, d: dict) -> "ChunkTally":
         return cls(int(d["index"]), int(d["n"]), int(d["jams"]), np.asarray(d["unit_jams"], dtype=np.int64),
-                   np.asarray(d["margin_jams"], dtype=np.int64), np.asarray(d["share"], dtype=np.float64))
+                   np.asarray(d["group_jams"], dtype=np.int64), np.asarray(d["margin_jams"], dtype=np.int64),
+                   np.asarray(d["share"], dtype=np.float64))
 
 
 def chunk_sizes(samples: int, chunk: int) -> list[int]:
@@ -185,7 +190,9 @@ def run_chunk(model: MarginModel, seed: int, index: int, n: int) -> ChunkTally:
         push = np.maximum(-(z[rows] * scaled[:, k]), 0.0)  # (r, F): how far each feature pushed it down
         tot = push.sum(axis=1, keepdims=True)
         share += (push / np.where(tot > 0, tot, 1.0)).sum(axis=0)
-    return ChunkTally(index, n, int(jam.any(axis=1).sum()), unit_jam.sum(axis=0).astype(np.int64),
+    groups = np.array([[m.group == g for m in model.margins] for g in GROUPS], dtype=bool)  # (3, K)
+    group_jams = np.array([int(jam[:, sel].any(axis=1).sum()) for sel in groups], dtype=np.int64)
+    return ChunkTally(index, n, int(jam.any(axis=1).sum()), unit_jam.sum(axis=0).astype(np.int64), group_jams,
                       jam.sum(axis=0).astype(np.int64), share)
 
 
@@ -198,7 +205,7 @@ def add_tallies(tallies) -> ChunkTally:
     out = ts[0]
     for t in ts[1:]:
         out = ChunkTally(-1, out.n + t.n, out.jams + t.jams, out.unit_jams + t.unit_jams,
-                         out.margin_jams + t.margin_jams, out.share + t.share)
+                         out.group_jams + t.group_jams, out.margin_jams + t.margin_jams, out.share + t.share)
     return out
 
 
@@ -248,9 +255,10 @@ def summarise(model: MarginModel, total: ChunkTally, top: int = 12) -> dict:
     by_feature = [{"feature": model.features[i].name, "kind": model.features[i].kind,
                    "share": float(shares[i] / all_share) if all_share else 0.0} for i in order if shares[i] > 0]
     groups = {}
-    for g in ("joint", "mesh", "clearance"):
+    for i, g in enumerate(GROUPS):
         members = [r for r in rows if r["group"] == g]
-        groups[g] = {"count": len(members), "worst": members[0]["unit"] if members and members[0]["jams"] else None}
+        groups[g] = {"count": len(members), "worst": members[0]["unit"] if members and members[0]["jams"] else None,
+                     **_prob(int(total.group_jams[i]), n)}
     return {"samples": n, "accuracy_mm": model.accuracy_mm, "features": len(model.features),
             "margins": len(model.margins), "overall": _prob(total.jams, n), "groups": groups, "units": rows,
             "sensitivity": {"by_kind": by_kind, "by_feature": by_feature}}
