@@ -79,7 +79,7 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
     if len(r["units"]) > limit:
         lines.append(f"  … {len(r['units']) - limit} more (--json lists all)")
     lines += ["", "what drives the jams (share of jams by feature kind): "
-              + ", ".join(f"{k['kind']} {100 * k['share']:.0f} %" for k in r["sensitivity"]["by_kind"] if k["share"] > 0)
+              + ", ".join(f"{k['kind']} {100 * k['share']:.1f} %" for k in r["sensitivity"]["by_kind"] if k["share"] > 0)
               or "no jams"]
     if r["sensitivity"]["by_feature"]:
         lines.append("features: " + ", ".join(f"{f['feature']} {100 * f['share']:.1f} %"
