@@ -290,9 +290,9 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     """A design-space study of ``config`` (see `partgen sweep`). Every --vary is checked before any
     work (its key must exist in the design's schema, START and STOP must validate there), so bad
     input writes nothing. Rows are appended to ``dest``/points.jsonl as they arrive; at the end
-    points.csv (and points.parquet with pyarrow) and index.html are written."""
+    points.csv and index.html are written."""
     from .config.overrides import Overrides
-    from .export.studies import sweep_csv, sweep_page, sweep_parquet
+    from .export.studies import sweep_csv, sweep_page
     from .mechanisms import load_design
 
     if not varies:
@@ -324,7 +324,7 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     keys = [v.key for v in vs]
     t0 = time.perf_counter()
     with C.cluster(workers, scheduler, processes) as client:
-        out = open_incremental(claim, ["points.jsonl", "points.csv", "points.parquet", "index.html"])
+        out = open_incremental(claim, ["points.jsonl", "points.csv", "index.html"])
         rows: dict[int, dict] = {}
         counter = C.Counter("points", len(points), progress)
         with open(out / "points.jsonl", "w", encoding="utf-8") as sink:
@@ -337,11 +337,6 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
         nworkers = len(client.scheduler_info().get("workers", {}))
     ordered = [rows[i] for i in sorted(rows)]
     _write_atomic(out / "points.csv", sweep_csv(ordered, keys))
-    pq = sweep_parquet(ordered, keys)
-    if pq is not None:
-        tmp = out / f".points.parquet.tmp-{os.getpid()}"
-        tmp.write_bytes(pq)
-        os.replace(tmp, out / "points.parquet")
     sub = (f"{raw.path.name}: {len(points)} points, " + ", ".join(v.text for v in vs)
            + (f"; {random} random points, seed {seed}" if random else "")
            + (f"; P(jam) from {tolerance_samples:,} simulated prints each" if tolerance_samples else ""))

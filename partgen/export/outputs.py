@@ -44,7 +44,7 @@ _LEGACY = {
     "trace": re.compile(r"^(trace\.(png|svg|gif)|wrist\.(png|svg))$"),
     "report": re.compile(r"^index\.html$"),
     "tolerance": re.compile(r"^(chunks\.jsonl|result\.json)$"),
-    "sweep": re.compile(r"^(points\.(csv|parquet)|index\.html|points\.jsonl)$"),
+    "sweep": re.compile(r"^(points\.(csv|jsonl)|index\.html)$"),
 }
 _TEMP = re.compile(r"^\.(?P<name>.+)\.(?P<what>tmp|old)-(?P<pid>\d+)(-[A-Za-z0-9_]+)?$")
 

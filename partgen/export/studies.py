@@ -1,5 +1,5 @@
-"""What the studies write: the tolerance section of a report, and a sweep's table (CSV, Parquet when
-pyarrow is there) and its HTML page of plots."""
+"""What the studies write: the tolerance section of a report, and a sweep's table (CSV) and its HTML
+page of plots."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import math
 
 from . import report as R
 
-__all__ = ["tolerance_section", "tolerance_bars", "SWEEP_COLUMNS", "sweep_csv", "sweep_parquet", "sweep_page"]
+__all__ = ["tolerance_section", "tolerance_bars", "SWEEP_COLUMNS", "sweep_csv", "sweep_page"]
 
 SWEEP_COLUMNS = ("point", "status", "ok", "failures", "first_failure", "mass_g", "size_mm", "parts",
                  "least_clearance_mm", "jam_probability", "jam_ci95_low", "jam_ci95_high", "seconds")
@@ -80,20 +80,6 @@ def sweep_csv(rows: list[dict], keys: list[str]) -> str:
     w.writerow(list(keys) + list(SWEEP_COLUMNS))
     for r in rows:
         w.writerow([_value(r["values"][k]) for k in keys] + [_value(r.get(c)) for c in SWEEP_COLUMNS])
-    return buf.getvalue()
-
-
-def sweep_parquet(rows: list[dict], keys: list[str]) -> bytes | None:
-    """The table as Parquet, or None when pyarrow is not installed."""
-    try:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-    except ImportError:
-        return None
-    cols = {k: [r["values"][k] for r in rows] for k in keys}
-    cols.update({c: [r.get(c) for r in rows] for c in SWEEP_COLUMNS})
-    buf = io.BytesIO()
-    pq.write_table(pa.table(cols), buf)
     return buf.getvalue()
 
 
