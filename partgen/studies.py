@@ -158,6 +158,8 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                     "workers": info["workers"], "seconds": {"cluster": round(t_cluster, 3),
                                                             "nominal_check": round(check_s, 3),
                                                             "samples": info["seconds"]}})
+    if kit_dir is not None:  # the study is of the design the folder's design.yaml builds: say if its STLs differ
+        summary["kit_stale_files"] = pipeline.stale_files(pipeline.make_kit(loaded), kit_dir)
     out = info["dest"]
     if out is not None:
         _write_atomic(out / "result.json", json.dumps(_json_safe(summary), indent=1))

@@ -84,6 +84,10 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
     if r["sensitivity"]["by_feature"]:
         lines.append("features: " + ", ".join(f"{f['feature']} {100 * f['share']:.1f} %"
                                               for f in r["sensitivity"]["by_feature"][:6]))
+    stale = r.get("kit_stale_files")
+    if stale:
+        lines.append(f"warning: {len(stale)} STL files of the kit folder differ from what its design.yaml builds "
+                     f"({', '.join(stale[:3])}{' …' if len(stale) > 3 else ''}): this is the study of the design; rebuild the kit")
     s = r["seconds"]
     lines.append(f"{r['chunks']} chunks on {r['workers']} worker(s) in {s['samples']:.2f} s (nominal check "
                  f"{s['nominal_check']:.1f} s, cluster start {s['cluster']:.1f} s)"
