@@ -102,7 +102,7 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
             return
         lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1,
                           processes=(workers or default_workers()) > 1 if processes is None else processes,
-                          dashboard_address=None, silence_logs=logging.CRITICAL)
+                          dashboard_address=None, silence_logs=logging.CRITICAL + 1)  # not even the shutdown's comm errors
         client = Client(lc, set_as_default=False)
         try:
             yield client
@@ -142,13 +142,15 @@ def run(client, fn: Callable, shared, tasks: Iterable[tuple], on_result: Callabl
     if not tasks:
         return
     big = client.scatter(shared, broadcast=True, hash=False) if shared is not None else None
-    futures = {}
-    for key, args in tasks:
-        fut = client.submit(fn, big, *args, key=f"{label}-{key}-{time.monotonic_ns()}", pure=False)
-        futures[fut] = key
+    stamp = time.monotonic_ns()
+    keys = [f"{label}-{key}-{stamp}" for key, _ in tasks]
+    by_key = {k: key for k, (key, _) in zip(keys, tasks)}
+    columns = list(zip(*(args for _, args in tasks)))
+    # one call submits them all; results come back in batches as they finish (with_results)
+    futures = client.map(fn, [big] * len(tasks), *columns, key=keys, pure=False)
     try:
-        for fut in as_completed(list(futures), loop=client.loop):
-            on_result(futures[fut], fut.result())
+        for fut, value in as_completed(futures, with_results=True, loop=client.loop):
+            on_result(by_key[fut.key], value)
             if progress:
                 progress()
     finally:
