@@ -136,7 +136,7 @@ def _mesh_terms(chain: _Chain, a: str, b: str) -> tuple[dict, float] | None:
         _project(terms, "drive bearing", "base", u)
         _project(terms, "ground post", "base", u, -1.0)
         return terms, float(np.linalg.norm(dc))
-    names = {a[0]: a for a in (a, b)}
+    names = {name[0]: name for name in (a, b)}
     j = int((names.get("M") or a)[1:])
     c = chain.idler[j]
     post = np.array([chain.length[j], 0.0])
