@@ -23,7 +23,8 @@ from .export.outputs import claim_output
 from .export.prints import plan_plates, printed_groups, stale_files, write_plate_files
 from .mechanisms import REGISTRY, load_design
 
-__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
+__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides", "design_digest",
+           "tolerance_result"]
 
 
 @dataclass(frozen=True)
@@ -110,6 +111,26 @@ def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
         _KITS.clear()
         _KITS[key] = kit
     return _KITS[key]
+
+
+def design_digest(raw: LoadedDesign) -> str:
+    """A fingerprint of a design as loaded (its YAML with the overrides, and its printer)."""
+    import hashlib
+
+    return hashlib.sha256(dump_yaml(raw.document()) + b"\0" + dump_yaml(raw.printer_document())).hexdigest()[:16]
+
+
+def tolerance_result(raw: LoadedDesign, kit_dir: Path | None) -> dict | None:
+    """The result `partgen tolerance` wrote for this design (``<kit>/tolerance/result.json`` or
+    ``out/<name>/tolerance/result.json``), if it was made from the same design and printer."""
+    import json
+
+    folder = (kit_dir / "tolerance") if kit_dir else Path("out") / raw.design.name / "tolerance"
+    try:
+        data = json.loads((folder / "result.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError, UnicodeDecodeError):
+        return None
+    return data if isinstance(data, dict) and data.get("design_digest") == design_digest(raw) else None
 
 
 def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None):
@@ -217,6 +238,11 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
     sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit),
                                               steps_of(mech, spec, kit)) if x[0] not in own]
+    tol = tolerance_result(raw, kit_dir)
+    if tol is not None:  # `partgen tolerance` ran on this very design: its result is a section
+        from .export.studies import tolerance_section
+
+        sections.append(tolerance_section(tol))
     if plates_png:
         sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
                                          f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "

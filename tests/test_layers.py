@@ -22,7 +22,9 @@ ALLOWED = {
     "testing": {"core", "design", "geometry", "export", "errors"},
     "mechanisms": {"core", "design", "config", "geometry", "checks", "export", "errors"},
     "pipeline": {"core", "config", "export", "mechanisms", "errors"},
-    "cli": {"pipeline", "export", "errors", "__init__"},
+    "cluster": {"errors"},
+    "studies": {"core", "config", "design", "export", "mechanisms", "pipeline", "cluster", "errors"},
+    "cli": {"pipeline", "studies", "cluster", "export", "errors", "__init__"},
     "__init__": {"pipeline", "errors"},
     "__main__": {"cli"},
 }
@@ -34,6 +36,8 @@ FORBIDDEN_LIBS = {
     "checks": {"manifold3d", "trimesh", "yaml", "pydantic", "matplotlib"},
     "pipeline": {"manifold3d"},
     "cli": {"manifold3d"},
+    "cluster": {"manifold3d"},
+    "studies": {"manifold3d"},
 }
 MANIFOLD_ONLY_IN = {"geometry"}  # the one manifold3d importer (mechanisms may hold its solids, not make them)
 

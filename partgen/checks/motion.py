@@ -185,14 +185,20 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
             tuple(centre) if centre is not None else w.where2d))
 
     # clearance: same-height pairs found in 2-D, measured in 3-D (manifold3d min_gap) at their
-    # closest angle; thin z-gaps from the stack
+    # closest angle; thin z-gaps from the stack. ``gaps``: every pair closer than ``reach``, in the
+    # plane (xy) or along z (the tolerance study perturbs them)
     closest = None
+    gaps: list[dict] = []
     for (a, b), w in worst.items():
         if w.n_vol >= 0 or w.n_gap < 0:
             continue
         if w.gap < reach:
             w.gap = min_gap(geo[names[a]].solid, P[w.n_gap, a], geo[names[b]].solid, P[w.n_gap, b], reach + 1.0)
             tests += 1
+            if w.gap < reach:
+                gaps.append({"parts": [names[a], names[b]], "mm": round(float(w.gap), 5), "axis": "xy",
+                             "theta_deg": round(math.degrees(thetas[w.n_gap]), 3),
+                             "location_mm": [round(float(c), 3) for c in w.where_gap]})
         if closest is None or w.gap < closest[0]:
             closest = (w.gap, names[a], names[b], float(thetas[w.n_gap]), w.where_gap)
         if w.gap < settings.min_clearance:
@@ -217,6 +223,8 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                 continue  # footprints apart: farther than dz
             c = shapely.intersection(A, B).centroid
             where = (c.x, c.y, sl.z1 + zoff[l] + dz / 2)
+            gaps.append({"parts": [names[l], names[h_]], "mm": round(float(dz), 5), "axis": "z",
+                         "theta_deg": round(math.degrees(thetas[n]), 3), "location_mm": [round(float(q), 3) for q in where]})
             if closest is None or dz < closest[0]:
                 closest = (dz, names[l], names[h_], float(thetas[n]), where)
             if dz < settings.min_clearance:
@@ -224,7 +232,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                     "clearance", "fail", f"{names[l]} and {names[h_]} are only {dz:.3f} mm apart along z "
                     f"(needs {settings.min_clearance:g} mm)", (names[l], names[h_]), float(thetas[n]), dz, "mm", where))
     figures = {"samples": len(thetas), "slab_pairs": len(tri), "narrow_phase_2d": int(len(hits)) if tri else 0,
-               "exact_3d": tests}
+               "exact_3d": tests, "gaps": sorted(gaps, key=lambda g: g["mm"])}
     if closest is not None:
         figures["closest_approach"] = {"mm": round(closest[0], 4), "parts": [closest[1], closest[2]],
                                        "theta_deg": round(math.degrees(closest[3]), 2),

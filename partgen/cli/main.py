@@ -21,6 +21,8 @@ from . import build as build_cmd
 from . import check as check_cmd
 from . import report as report_cmd
 from . import trace as trace_cmd
+from . import tolerance as tolerance_cmd
+from . import sweep as sweep_cmd
 from .common import print_json
 
 __all__ = ["main", "entry", "Interrupted"]
@@ -54,6 +56,8 @@ def parser() -> argparse.ArgumentParser:
     check_cmd.add_parser(sub)
     trace_cmd.add_parser(sub)
     report_cmd.add_parser(sub)
+    tolerance_cmd.add_parser(sub)
+    sweep_cmd.add_parser(sub)
     return ap
 
 

@@ -13,7 +13,7 @@ from .findings import Result
 from .parts import Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section", "Step"]
+__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section", "Step", "TOLERANCE_HOOK", "tolerance_hook"]
 
 
 @runtime_checkable
@@ -111,3 +111,17 @@ class Mechanism(Protocol):
     # Optional: ``assembly_steps(spec, kit) -> list[Step]``, the steps in the order a maker puts the
     # kit together, each with the parts it uses (the report shows them with their pictures). A
     # mechanism without it gets ``export.assembly.default_steps`` (base first, then kit order).
+
+    # Optional (see ``tolerance_hook``): a mechanism that offers `partgen tolerance` defines
+    # tolerance_model(spec, kit, result, accuracy_mm) -> design.tolerance.MarginModel: the margins
+    # of ``result`` (the nominal check of ``kit``) that decide whether it turns, as linear functions
+    # of the printed features' deviations for a printer accuracy of ± accuracy_mm.
+
+
+TOLERANCE_HOOK = "tolerance_model"
+
+
+def tolerance_hook(mechanism) -> Callable | None:
+    """The mechanism's ``tolerance_model`` (bound), or None when it offers no tolerance study."""
+    hook = getattr(mechanism, TOLERANCE_HOOK, None)
+    return hook if callable(hook) else None

@@ -32,17 +32,19 @@ from pathlib import Path
 from .. import __version__
 from ..errors import OptionError
 
-__all__ = ["MARKER", "KIT_DERIVED", "OutputClaim", "claim_output", "atomic_dir", "check_text_target",
+__all__ = ["MARKER", "KIT_DERIVED", "OutputClaim", "claim_output", "atomic_dir", "open_incremental", "check_text_target",
            "write_text_file", "is_partgen_kit"]
 
 MARKER = ".partgen"
-KIT_DERIVED = ("plates", "trace", "report")  # outputs that live inside a kit folder and derive from it
+KIT_DERIVED = ("plates", "trace", "report", "tolerance")  # outputs that live inside a kit folder and derive from it
 # file names an earlier partgen (before the marker) wrote into each kind of folder
 _LEGACY = {
     "kit": re.compile(r"^(.+\.stl|manifest\.json|assembly\.glb|design\.yaml|printer\.yaml)$"),
     "plates": re.compile(r"^(plate\d+\.3mf|plates\.png)$"),
     "trace": re.compile(r"^(trace\.(png|svg|gif)|wrist\.(png|svg))$"),
     "report": re.compile(r"^index\.html$"),
+    "tolerance": re.compile(r"^(chunks\.jsonl|result\.json)$"),
+    "sweep": re.compile(r"^(points\.(csv|jsonl)|index\.html)$"),
 }
 _TEMP = re.compile(r"^\.(?P<name>.+)\.(?P<what>tmp|old)-(?P<pid>\d+)(-[A-Za-z0-9_]+)?$")
 
@@ -249,6 +251,24 @@ def claim_output(dest: str | Path, kind: str, option: str = "-o", protect=(), no
     ``with`` the result to write it. ``protect``: files partgen reads (the design, the printer);
     ``notify(line)`` hears what the swap did besides writing (stale folders removed)."""
     return OutputClaim(Path(dest), kind, option, tuple(Path(p) for p in protect), notify)
+
+
+def open_incremental(claim: OutputClaim, files: list[str], keep: bool = False) -> Path:
+    """Make ``claim.dest`` (checked already) a folder written *as results arrive* rather than
+    swapped in whole: it carries the marker listing ``files`` from the start, so an interrupted run
+    leaves a folder partgen knows is its own and a later run may continue (``keep``: leave the
+    files already there) or replace (the listed files removed first)."""
+    dest = claim.dest
+    with _locked(dest.parent) if dest.parent.exists() else contextlib.nullcontext():
+        claim.check()
+        dest.mkdir(parents=True, exist_ok=True)
+        if not keep:
+            for name in files:
+                with contextlib.suppress(FileNotFoundError):
+                    (dest / name).unlink()
+        _write_json(dest / MARKER, {"generator": "partgen", "version": __version__, "output": claim.kind,
+                                    "files": sorted(files)})
+    return dest
 
 
 def atomic_dir(dest, kind: str = "kit", option: str = "-o", protect=(), notify=None) -> OutputClaim:

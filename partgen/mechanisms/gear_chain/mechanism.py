@@ -175,6 +175,12 @@ class GearChain:
 
         return check_kit(kit, samples, progress)
 
+    def tolerance_model(self, spec: ChainSpec, kit: Kit, result: Result, accuracy_mm: float):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel``."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm)
+
     def trace(self, spec: ChainSpec, kit: Kit | None, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:
         """The pen of the chain as built over one crank turn vs its targets; trace.png/.svg/.gif into ``out``."""

@@ -1,0 +1,157 @@
+"""Run many pure tasks on a Dask distributed cluster: a ``LocalCluster`` on this machine's cores,
+or an existing scheduler by its address.
+
+Tasks are pure functions of their arguments (a design, a seed, a chunk index), so what they return
+does not depend on which worker ran them or in what order: the caller keys every result by its
+task and combines them in task order. ``run`` hands each result to ``on_result`` as it arrives
+(the caller writes it down at once, so an interrupted run keeps what it finished).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import sys
+import time
+from typing import Callable, Iterable
+
+from .errors import OptionError
+
+__all__ = ["CONNECT_TIMEOUT_S", "cluster", "run", "default_workers", "Counter"]
+
+CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (probe ≤ 2 s, then ≤ 4 s), never a hang
+
+
+def _reachable(address: str) -> str | None:
+    """Why a tcp:// scheduler address cannot be reached (a refused or silent port), or None: a
+    quick probe, so a wrong address fails at once instead of after Dask's retries."""
+    import socket
+    from urllib.parse import urlsplit
+
+    if "://" not in address:
+        address = "tcp://" + address
+    u = urlsplit(address)
+    if u.scheme not in ("tcp", "tls"):
+        return None  # other transports: leave it to Dask
+    try:
+        host, port = u.hostname, u.port
+    except ValueError as e:
+        return f"not an address: {e}"
+    if not host or not port:
+        return "give it as tcp://HOST:PORT"
+    try:
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT_S / 2):
+            return None
+    except OSError as e:
+        return e.strerror or type(e).__name__
+
+
+def _connect(Client, address: str):
+    """A Client of the scheduler at ``address``, or ``OptionError`` when none answers within
+    CONNECT_TIMEOUT_S: the connection is made in a thread and waited for, because a port that
+    accepts the connection but is no Dask scheduler never answers its handshake."""
+    import threading
+
+    got: dict = {}
+
+    def connect():
+        try:
+            got["client"] = Client(address, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False)
+        except BaseException as e:  # noqa: BLE001 - handed to the caller
+            got["error"] = e
+    t = threading.Thread(target=connect, name="partgen-connect", daemon=True)
+    t.start()
+    t.join(CONNECT_TIMEOUT_S + 0.5)
+    if "client" in got:
+        return got["client"]
+    e = got.get("error")
+    why = "no answer" if e is None else f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}"
+    raise OptionError("--scheduler", address, f"no Dask scheduler answered there within {CONNECT_TIMEOUT_S:g} s ({why})")
+
+
+def default_workers() -> int:
+    """The cores this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+@contextlib.contextmanager
+def cluster(workers: int | None = None, scheduler: str | None = None, processes: bool | None = None):
+    """A connected ``distributed.Client``: to ``scheduler`` (an address such as
+    ``tcp://10.0.0.5:8786``; ``OptionError`` on --scheduler when it cannot be reached within
+    CONNECT_TIMEOUT_S), or to a new ``LocalCluster`` of ``workers`` single-threaded workers
+    (``processes``: True, worker processes; False, threads of this process, quick to start; None,
+    processes for more than one worker, a thread for one)."""
+    import dask
+    from distributed import Client, LocalCluster
+
+    with dask.config.set({"distributed.comm.timeouts.connect": f"{CONNECT_TIMEOUT_S}s",
+                          "distributed.admin.tick.limit": "1h"}):
+        if scheduler is not None:
+            why = _reachable(scheduler)
+            if why is not None:
+                raise OptionError("--scheduler", scheduler, f"cannot reach a Dask scheduler there ({why})")
+            client = _connect(Client, scheduler)
+            try:
+                yield client
+            finally:
+                client.close()
+            return
+        lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1,
+                          processes=(workers or default_workers()) > 1 if processes is None else processes,
+                          dashboard_address=None, silence_logs=logging.CRITICAL + 1)  # not even the shutdown's comm errors
+        client = Client(lc, set_as_default=False)
+        try:
+            yield client
+        finally:
+            client.close()
+            lc.close()
+
+
+class Counter:
+    """A progress line on stderr (only on a terminal): ``done/total`` with the elapsed time."""
+
+    def __init__(self, label: str, total: int, enabled: bool = True, done: int = 0):
+        self.label, self.total, self.done = label, total, done
+        self.enabled = enabled and sys.stderr.isatty()
+        self.t0 = time.perf_counter()
+
+    def __call__(self, step: int = 1) -> None:
+        self.done += step
+        if not self.enabled:
+            return
+        w = 30
+        k = int(w * self.done / max(self.total, 1))
+        print(f"\r  {self.label} [{'#' * k}{'.' * (w - k)}] {self.done}/{self.total} "
+              f"{time.perf_counter() - self.t0:6.1f} s", end="", file=sys.stderr, flush=True)
+        if self.done >= self.total:
+            print("\r" + " " * 78 + "\r", end="", file=sys.stderr, flush=True)
+
+
+def run(client, fn: Callable, shared, tasks: Iterable[tuple], on_result: Callable, progress: Callable | None = None,
+        label: str = "task") -> None:
+    """Submit ``fn(shared, *args)`` for every ``(key, args)`` of ``tasks`` and call
+    ``on_result(key, value)`` as each one finishes (in the order they finish). ``shared`` is sent
+    to the workers once. A task that raises stops the run with its error."""
+    from distributed import as_completed
+
+    tasks = list(tasks)
+    if not tasks:
+        return
+    big = client.scatter(shared, broadcast=True, hash=False) if shared is not None else None
+    stamp = time.monotonic_ns()
+    keys = [f"{label}-{key}-{stamp}" for key, _ in tasks]
+    by_key = {k: key for k, (key, _) in zip(keys, tasks)}
+    columns = list(zip(*(args for _, args in tasks)))
+    # one call submits them all; results come back in batches as they finish (with_results)
+    futures = client.map(fn, [big] * len(tasks), *columns, key=keys, pure=False)
+    try:
+        for fut, value in as_completed(futures, with_results=True, loop=client.loop):
+            on_result(by_key[fut.key], value)
+            if progress:
+                progress()
+    finally:
+        client.cancel(list(futures))

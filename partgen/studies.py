@@ -1,0 +1,349 @@
+"""Studies of many runs, on a Dask cluster (``partgen.cluster``): the tolerance Monte Carlo of one
+kit (``tolerance``) and the design-space sweep (``sweep``, in ``partgen.sweep``).
+
+``tolerance``: one nominal check of the kit gives the margins that decide whether it turns; the
+mechanism's ``tolerance_model`` hook writes them as linear functions of the printed features'
+deviations (``design.tolerance``); the samples are drawn in chunks of CHUNK, chunk i from
+``SeedSequence(seed, spawn_key=(i,))``, on the cluster's workers. Each finished chunk is appended
+to ``<out>/chunks.jsonl`` as it arrives; ``resume`` runs only the chunks not there yet. The tallies
+are added in chunk order, so the result is the same for any number of workers.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+from . import cluster as C
+from . import pipeline
+from .core.protocol import tolerance_hook
+from .design.tolerance import ChunkTally, MarginModel, add_tallies, chunk_sizes, run_chunk, summarise
+from .errors import ConfigError, OptionError
+from .export.outputs import open_incremental
+
+__all__ = ["CHUNK", "ToleranceRun", "tolerance", "sample", "nominal_model", "Vary", "parse_vary", "sweep_points", "sweep_point", "sweep"]
+
+CHUNK = 1000  # samples per task (default): ~10 ms of numpy, well over the local scheduler's ~1 ms per task
+FILES = ["chunks.jsonl", "result.json"]
+
+
+@dataclass(frozen=True)
+class ToleranceRun:
+    loaded: object
+    result: dict  # summarise(...) plus the run's settings and timings
+    dest: Path | None
+
+
+def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None):
+    """(model, nominal check result, seconds of the check): the kit built once, checked once."""
+    hook = tolerance_hook(loaded.mechanism)
+    if hook is None:
+        raise ConfigError(loaded.path, "kind", f"a {loaded.mechanism.kind} design offers no tolerance study yet "
+                          "(`partgen tolerance` runs on kind: gear_chain)")
+    kit = pipeline.make_kit(loaded)
+    t0 = time.perf_counter()
+    result = loaded.mechanism.check(loaded.spec, kit, check_samples, None)
+    seconds = time.perf_counter() - t0
+    acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
+    return hook(loaded.spec, kit, result, acc), result, seconds
+
+
+def _write_atomic(path: Path, text: str) -> None:
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def _resume_state(path: Path, header: dict) -> dict[int, ChunkTally]:
+    """The chunks a previous run of the same study finished (``OptionError`` on --resume when the
+    folder holds another study)."""
+    if not path.is_file():
+        return {}
+    lines = path.read_text(encoding="utf-8").splitlines()
+    try:
+        head = json.loads(lines[0]) if lines else {}
+    except ValueError:
+        head = {}
+    if {k: head.get(k) for k in header} != header:
+        diff = [k for k in header if head.get(k) != header[k]]
+        raise OptionError("--resume", str(path.parent), "holds chunks of another study (its "
+                          f"{', '.join(diff) or 'header'} differ): run without --resume to start over")
+    done = {}
+    for line in lines[1:]:
+        try:
+            t = ChunkTally.from_dict(json.loads(line))
+        except (ValueError, KeyError, TypeError):
+            continue  # a line cut short by an interruption: that chunk runs again
+        done[t.index] = t
+    return done
+
+
+def sample(client, model: MarginModel, samples: int, seed: int, claim=None, resume: bool = False,
+           header: dict | None = None, progress: bool = False, chunk: int = CHUNK) -> tuple[ChunkTally, dict]:
+    """Draw ``samples`` of ``model`` on ``client``'s workers in chunks of ``chunk``; with a
+    ``claim`` (an output folder checked before any work), append each chunk to its chunks.jsonl as
+    it arrives (``resume``: keep the chunks a previous run with the same header finished there).
+    Returns the tallies added in chunk order, and facts of the run (chunks, resumed_chunks,
+    workers, seconds, dest)."""
+    sizes = chunk_sizes(samples, chunk)
+    header = {**(header or {}), "model": model.digest(), "seed": int(seed), "samples": int(samples),
+              "chunk": int(chunk)}
+    done: dict[int, ChunkTally] = {}
+    out = None
+    if claim is not None:
+        out = claim.dest
+        if resume:
+            done = _resume_state(out / "chunks.jsonl", header)
+        open_incremental(claim, FILES, keep=resume and bool(done))
+        if not done:
+            (out / "chunks.jsonl").write_text(json.dumps(header) + "\n", encoding="utf-8")
+    todo = [(i, (int(seed), i, n)) for i, n in enumerate(sizes) if i not in done]
+    counter = C.Counter("samples", samples, progress, sum(t.n for t in done.values()))
+    sink = open(out / "chunks.jsonl", "a", encoding="utf-8") if out is not None else None
+    got = dict(done)
+
+    def keep(key, tally):
+        got[key] = tally
+        if sink is not None:
+            sink.write(json.dumps(tally.to_dict()) + "\n")
+            sink.flush()
+        counter(tally.n)
+    t1 = time.perf_counter()
+    try:
+        C.run(client, run_chunk, model, todo, keep, None, "tolerance")
+    finally:
+        if sink is not None:
+            sink.close()
+    info = {"chunks": len(sizes), "resumed_chunks": len(done), "computed_chunks": len(todo),
+            "workers": len(client.scheduler_info().get("workers", {})),
+            "seconds": round(time.perf_counter() - t1, 3), "dest": out}
+    return add_tallies(got.values()), info
+
+
+def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int = 0, workers: int | None = None,
+              scheduler: str | None = None, dest=None, resume: bool = False, check_samples: int | None = None,
+              over=None, progress: bool = False, processes: bool | None = None, write: bool = True,
+              chunk: int = CHUNK) -> ToleranceRun:
+    """The tolerance study of a design or kit folder: see the module's docstring. ``dest``: the
+    folder for chunks.jsonl and result.json (default ``<kit>/tolerance`` or
+    ``out/<name>/tolerance``); ``write=False``: nothing written."""
+    if samples <= 0:
+        raise OptionError("--samples", str(samples), "must be at least 1")
+    if accuracy_mm is not None and not (math.isfinite(accuracy_mm) and 0 <= accuracy_mm <= 5):
+        raise OptionError("--accuracy-mm", str(accuracy_mm), "must be a number of mm from 0 to 5")
+    raw, kit_dir = pipeline._raw(target, over)
+    loaded = pipeline.load(target, raw)
+    if tolerance_hook(loaded.mechanism) is None:
+        nominal_model(loaded, accuracy_mm)  # raises the clear error
+    claim = None
+    if write:
+        claim = pipeline.output_claim(raw, Path(dest) if dest else (kit_dir / "tolerance" if kit_dir else None),
+                                      "tolerance", "tolerance", "-o")
+    t0 = time.perf_counter()
+    with C.cluster(workers, scheduler, processes) as client:  # an unreachable scheduler: exit 2, nothing written
+        t_cluster = time.perf_counter() - t0
+        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples)
+        header = {"study": "tolerance", "design": pipeline.design_digest(raw), "seed": int(seed)}
+        total, info = sample(client, model, samples, seed, claim, resume, header, progress, chunk)
+    summary = summarise(model, total)
+    summary.update({"design": raw.design.name, "kind": loaded.mechanism.kind, "config": str(loaded.path),
+                    "design_digest": header["design"], "model_digest": model.digest(), "seed": int(seed),
+                    "chunk": int(chunk), "chunks": info["chunks"], "resumed_chunks": info["resumed_chunks"],
+                    "nominal_check_ok": nominal.ok, "accuracy_source": "--accuracy-mm" if accuracy_mm is not None
+                    else f"printer {raw.printer.name} xy_accuracy_mm",
+                    "workers": info["workers"], "seconds": {"cluster": round(t_cluster, 3),
+                                                            "nominal_check": round(check_s, 3),
+                                                            "samples": info["seconds"]}})
+    if kit_dir is not None:  # the study is of the design the folder's design.yaml builds: say if its STLs differ
+        summary["kit_stale_files"] = pipeline.stale_files(pipeline.make_kit(loaded), kit_dir)
+    out = info["dest"]
+    if out is not None:
+        _write_atomic(out / "result.json", json.dumps(_json_safe(summary), indent=1))
+    return ToleranceRun(loaded, summary, out)
+
+
+def _json_safe(v):
+    if isinstance(v, dict):
+        return {str(k): _json_safe(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_json_safe(x) for x in v]
+    if hasattr(v, "item") and not isinstance(v, (str, bytes)):
+        v = v.item()
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    return v
+
+
+# --------------------------------------------------------------------------------------------- sweep
+@dataclass(frozen=True)
+class Vary:
+    """One ``--vary KEY=START:STOP:STEPS``: a key path (as --set) and its range."""
+
+    key: str
+    start: float
+    stop: float
+    steps: int
+    integer: bool  # START and STOP were whole numbers: every value is rounded to a whole number
+    text: str
+
+    def values(self) -> list:
+        import numpy as np
+
+        v = np.linspace(self.start, self.stop, self.steps) if self.steps > 1 else np.array([self.start])
+        return [int(round(x)) for x in v] if self.integer else [float(round(x, 9)) for x in v]
+
+
+def parse_vary(text: str) -> Vary:
+    """``KEY=START:STOP:STEPS`` → Vary; ``OptionError`` on --vary for anything else."""
+    key, eq, rng = text.partition("=")
+    key = key.strip()
+    parts = rng.split(":")
+    if not eq or not key or len(parts) != 3:
+        raise OptionError("--vary", text, "expected KEY=START:STOP:STEPS (gears.module_mm=1.2:1.6:5)")
+    try:
+        lo, hi = float(parts[0]), float(parts[1])
+    except ValueError:
+        raise OptionError("--vary", text, "START and STOP must be numbers") from None
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise OptionError("--vary", text, "START and STOP must be finite numbers")
+    try:
+        steps = int(parts[2], 10)
+    except ValueError:
+        raise OptionError("--vary", text, "STEPS must be a whole number of points") from None
+    if not 1 <= steps <= 10_000:
+        raise OptionError("--vary", text, "STEPS must be 1 to 10,000 points")
+    integer = all(p.strip().lstrip("+-").isdigit() for p in parts[:2])
+    return Vary(key, lo, hi, steps, integer, text)
+
+
+def sweep_points(varies: list[Vary], random: int | None = None, seed: int = 0) -> list[dict]:
+    """The design points: the grid of every --vary's values, or ``random`` points drawn uniformly in
+    the box they span (seeded; whole-number keys drawn as whole numbers)."""
+    import itertools
+
+    import numpy as np
+
+    if random is None:
+        return [dict(zip([v.key for v in varies], combo)) for combo in itertools.product(*(v.values() for v in varies))]
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
+    out = []
+    for _ in range(random):
+        point = {}
+        for v in varies:
+            x = rng.uniform(min(v.start, v.stop), max(v.start, v.stop))
+            point[v.key] = int(round(x)) if v.integer else float(round(x, 9))
+        out.append(point)
+    return out
+
+
+def _sets(values: dict, base_sets=()) -> tuple:
+    from .config.overrides import parse_set
+
+    return tuple(base_sets) + tuple(parse_set(f"{k}={v!r}") for k, v in values.items())
+
+
+def sweep_point(shared: dict, index: int, values: dict) -> dict:
+    """One design point built and checked (a task: a pure function of the design and the values).
+    A point the design refuses is a row with status "refused" and the reason."""
+    from .config.overrides import Overrides
+    from .errors import PartgenError
+
+    t0 = time.perf_counter()
+    row = {"point": index, "values": values, "status": "refused", "ok": False, "failures": None,
+           "first_failure": None, "mass_g": None, "size_mm": None, "parts": None, "least_clearance_mm": None,
+           "jam_probability": None, "jam_ci95_low": None, "jam_ci95_high": None}
+    over = Overrides(_sets(values, shared["sets"]), shared["printer"])
+    try:
+        loaded = pipeline.load(shared["config"], over=over)
+        kit = pipeline.make_kit(loaded)
+        result = loaded.mechanism.check(loaded.spec, kit, shared["check_samples"], None)
+    except PartgenError as e:
+        row["first_failure"] = str(e)
+        row["seconds"] = round(time.perf_counter() - t0, 3)
+        return row
+    fails = [f for f in result.findings if f.severity == "fail"]
+    groups = pipeline.printed_groups(kit)
+    close = result.figures.get("motion", {}).get("closest_approach")
+    row.update(status="pass" if result.ok else "fail", ok=result.ok, failures=len(fails),
+               first_failure=f"{fails[0].check}: {fails[0].message}" if fails else None,
+               mass_g=round(sum(len(g) * float(g[0].mesh.volume) for g in groups) * kit.density, 2),
+               size_mm=round(max(float(max(g[0].mesh.extents)) for g in groups), 2), parts=len(kit.parts),
+               least_clearance_mm=None if close is None else float(close["mm"]))
+    m = shared["tolerance_samples"]
+    hook = tolerance_hook(loaded.mechanism)
+    if m and hook is not None:
+        model = hook(loaded.spec, kit, result, kit.printer.xy_accuracy if shared["accuracy"] is None
+                     else shared["accuracy"])
+        total = add_tallies([run_chunk(model, shared["seed"], i, n) for i, n in enumerate(chunk_sizes(m, CHUNK))])
+        s = summarise(model, total)
+        row.update(jam_probability=s["overall"]["probability"], jam_ci95_low=s["overall"]["ci95"][0],
+                   jam_ci95_high=s["overall"]["ci95"][1])
+    row["seconds"] = round(time.perf_counter() - t0, 3)
+    return row
+
+
+def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_samples: int | None = None,
+          accuracy_mm: float | None = None, seed: int = 0, workers: int | None = None, scheduler: str | None = None,
+          check_samples: int | None = None, over=None, progress: bool = False, processes: bool | None = None) -> dict:
+    """A design-space study of ``config`` (see `partgen sweep`). Every --vary is checked before any
+    work (its key must exist in the design's schema, START and STOP must validate there), so bad
+    input writes nothing. Rows are appended to ``dest``/points.jsonl as they arrive; at the end
+    points.csv and index.html are written."""
+    from .config.overrides import Overrides
+    from .export.studies import sweep_csv, sweep_page
+    from .mechanisms import load_design
+
+    if not varies:
+        raise OptionError("--vary", "", "give at least one KEY=START:STOP:STEPS")
+    vs = [parse_vary(t) for t in varies]
+    if len({v.key for v in vs}) != len(vs):
+        raise OptionError("--vary", varies[-1], "a key is varied twice")
+    if random is not None and random <= 0:
+        raise OptionError("--random", str(random), "must be at least 1 point")
+    if tolerance_samples is not None and tolerance_samples <= 0:
+        raise OptionError("--tolerance-samples", str(tolerance_samples), "must be at least 1")
+    over = over or Overrides()
+    raw = load_design(config, over)  # the design itself must be valid
+    for v in vs:
+        for x in {v.start, v.stop}:
+            val = int(round(x)) if v.integer else x
+            try:
+                load_design(config, Overrides(_sets({v.key: val}, over.sets), over.printer))
+            except ConfigError as e:
+                raise OptionError("--vary", v.text, f"{v.key}={val:g} is not a valid design value: "
+                                  f"{getattr(e, 'problem', e)}") from None
+    points = sweep_points(vs, random, seed)
+    if len(points) > 100_000:
+        raise OptionError("--vary", varies[-1], f"{len(points):,} points: at most 100,000")
+    claim = pipeline.output_claim(raw, Path(dest) if dest else Path("out") / raw.design.name / "sweep", "sweep", None,
+                                  "-o")
+    shared = {"config": str(config), "sets": tuple(over.sets), "printer": over.printer, "check_samples": check_samples,
+              "tolerance_samples": tolerance_samples, "accuracy": accuracy_mm, "seed": int(seed)}
+    keys = [v.key for v in vs]
+    t0 = time.perf_counter()
+    with C.cluster(workers, scheduler, processes) as client:
+        out = open_incremental(claim, ["points.jsonl", "points.csv", "index.html"])
+        rows: dict[int, dict] = {}
+        counter = C.Counter("points", len(points), progress)
+        with open(out / "points.jsonl", "w", encoding="utf-8") as sink:
+            def keep(key, row):
+                rows[key] = row
+                sink.write(json.dumps(_json_safe(row)) + "\n")
+                sink.flush()
+                counter()
+            C.run(client, sweep_point, shared, [(i, (i, p)) for i, p in enumerate(points)], keep, None, "sweep")
+        nworkers = len(client.scheduler_info().get("workers", {}))
+    ordered = [rows[i] for i in sorted(rows)]
+    _write_atomic(out / "points.csv", sweep_csv(ordered, keys))
+    sub = (f"{raw.path.name}: {len(points)} points, " + ", ".join(v.text for v in vs)
+           + (f"; {random} random points, seed {seed}" if random else "")
+           + (f"; P(jam) from {tolerance_samples:,} simulated prints each" if tolerance_samples else ""))
+    _write_atomic(out / "index.html", sweep_page(ordered, keys, f"partgen sweep: {raw.design.name}", sub))
+    return {"design": raw.design.name, "points": len(points), "keys": keys, "dest": str(out), "workers": nworkers,
+            "seconds": round(time.perf_counter() - t0, 3),
+            "pass": sum(r["status"] == "pass" for r in ordered), "fail": sum(r["status"] == "fail" for r in ordered),
+            "refused": sum(r["status"] == "refused" for r in ordered), "rows": ordered}

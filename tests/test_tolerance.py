@@ -1,0 +1,171 @@
+"""`partgen tolerance`: the margin model of the gear chain, the Monte Carlo and its engine.
+
+Each kit is built and checked once (few crank angles: the chain's margins that decide whether it
+turns do not depend on them, bar the motion gaps, which the Eq 12 tip-circle margin covers)."""
+
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from partgen import cluster, pipeline, studies
+from partgen.cli.main import main
+from partgen.design.tolerance import add_tallies, chunk_sizes, run_chunk, summarise, wilson
+
+ROOT = Path(__file__).parent.parent
+CONFIGS = ROOT / "configs"
+FORTUS = 0.127
+
+
+@pytest.fixture(scope="module")
+def nominal():
+    """name -> (loaded, kit, nominal check result), each built and checked once (4 crank angles)."""
+    out = {}
+    for name in ("butterfly", "butterfly_liu2017"):
+        loaded = pipeline.load(CONFIGS / f"{name}.yaml")
+        kit = pipeline.make_kit(loaded)
+        out[name] = (loaded, kit, loaded.mechanism.check(loaded.spec, kit, 4, None))
+    return out
+
+
+def model_of(nominal, name, accuracy):
+    loaded, kit, result = nominal[name]
+    return loaded.mechanism.tolerance_model(loaded.spec, kit, result, accuracy)
+
+
+def run_local(model, samples, seed=0, chunk=500):
+    tallies = [run_chunk(model, seed, i, n) for i, n in enumerate(chunk_sizes(samples, chunk))]
+    return summarise(model, add_tallies(tallies))
+
+
+def test_margins_come_from_the_nominal_check(nominal):
+    loaded, kit, result = nominal["butterfly"]
+    m = model_of(nominal, "butterfly", FORTUS)
+    running = [c for c in kit.contacts if c.kind == "running"]
+    joints = [x for x in m.margins if x.group == "joint"]
+    assert len(joints) == len(running) == 22
+    assert all(abs(x.nominal - 0.1) < 0.02 for x in joints)  # 0.2 mm diametral, measured in the section
+    backlash = {x.unit: x.nominal for x in m.margins if x.what == "backlash"}
+    assert backlash == {" / ".join(r["pair"]).replace(" / ", "/"): r["backlash_mm"] for r in result.figures["meshes"]}
+    # Eq 12 on link 10 of the default: S − r_tip(D10) − r_tip(G11) = the 1.5 mm tip gap or more
+    eq12 = next(x for x in m.margins if x.unit == "D10–G11")
+    assert eq12.nominal >= 1.5 - 1e-9
+
+
+def test_a_margin_moves_by_its_feature():
+    """One feature moved by 1 σ moves the margin by its coefficient × σ, the others by nothing."""
+    from partgen.design.tolerance import Feature, Margin, MarginModel
+
+    feats = (Feature("a", "hole", "p"), Feature("b", "pin", "p"))
+    margins = (Margin("j", "joint", "radial gap", 0.05), Margin("k", "joint", "radial gap", 10.0))
+    coeff = np.array([[0.5, 0.0], [-0.5, 0.0]])
+    model = MarginModel(feats, margins, coeff, np.array([0.03, 0.03]), np.array([0.05, 10.0]), 0.09)
+    r = run_local(model, 20_000, seed=3)
+    # margin 0.05 + 0.5(δa − δb), σ of it 0.03/√2: P = Φ(−0.05/0.0212) = 0.00917
+    p = r["units"][0]["probability"]
+    assert r["units"][0]["unit"] == "j" and abs(p - 0.00917) < 0.003
+    assert r["units"][1]["jams"] == 0
+    assert {k["kind"] for k in r["sensitivity"]["by_kind"] if k["share"] > 0} == {"hole", "pin"}
+    assert wilson(0, 100)[0] == 0.0 and 0.03 < wilson(0, 100)[1] < 0.04
+
+
+def test_accuracy_zero_never_jams_the_default(nominal):
+    r = run_local(model_of(nominal, "butterfly", 0.0), 2000)
+    assert r["overall"]["jams"] == 0 and r["overall"]["ci95"][1] < 0.002
+
+
+def test_the_papers_design_jams_at_link_10(nominal):
+    r = run_local(model_of(nominal, "butterfly_liu2017", FORTUS), 4000)
+    assert r["overall"]["probability"] > 0.8
+    top = r["units"][0]
+    assert top["unit"] == "D10–G11" and top["where"] == "link 10"
+    assert 0.4 < top["probability"] < 0.6  # tip circles that touch: any oversize tip clashes
+    assert all(u["probability"] < 0.2 for u in r["units"][1:])
+    # what drives it: link 10's own length and the two gears' outlines
+    feats = [f["feature"] for f in r["sensitivity"]["by_feature"][:4]]
+    assert set(feats) == {"B10 proximal hole x", "B10 distal post x", "D10 teeth", "G11 teeth"}
+
+
+def test_seeds_are_per_chunk(nominal):
+    m = model_of(nominal, "butterfly_liu2017", FORTUS)
+    child = np.random.SeedSequence(7).spawn(3)[2]
+    z = np.random.default_rng(child).standard_normal((5, len(m.features)))
+    assert np.array_equal(z, np.random.default_rng(np.random.SeedSequence(7, spawn_key=(2,))).standard_normal(z.shape))
+
+
+def test_one_worker_and_two_give_the_same_result(nominal):
+    m = model_of(nominal, "butterfly_liu2017", FORTUS)
+    got = []
+    for workers in (1, 2):
+        with cluster.cluster(workers, processes=False) as client:
+            total, info = studies.sample(client, m, 3000, 11, chunk=400)
+        assert info["workers"] == workers and info["computed_chunks"] == 8
+        got.append(summarise(m, total))
+    assert got[0] == got[1]
+    assert got[0] == run_local(m, 3000, seed=11, chunk=400)
+
+
+def test_resume_runs_only_the_missing_chunks(nominal, tmp_path):
+    from partgen.export.outputs import claim_output
+
+    m = model_of(nominal, "butterfly_liu2017", FORTUS)
+    dest = tmp_path / "tolerance"
+    with cluster.cluster(1, processes=False) as client:
+        full, _ = studies.sample(client, m, 2000, 5, claim_output(dest, "tolerance"), chunk=400)
+        lines = (dest / "chunks.jsonl").read_text().splitlines()
+        assert len(lines) == 1 + 5
+        (dest / "chunks.jsonl").write_text("\n".join(lines[:3]) + "\n" + lines[3][:20])  # cut short mid-line
+        again, info = studies.sample(client, m, 2000, 5, claim_output(dest, "tolerance"), resume=True, chunk=400)
+        assert info["resumed_chunks"] == 2 and info["computed_chunks"] == 3
+        assert summarise(m, again) == summarise(m, full)
+        with pytest.raises(Exception, match="another study"):
+            studies.sample(client, m, 2000, 6, claim_output(dest, "tolerance"), resume=True, chunk=400)
+
+
+def test_cli_running_clearance_below_the_accuracy_jams(nominal, tmp_path, capsys):
+    """The paper's 0.1 mm diametral (0.05 radial) running fits on a ±0.127 mm printer: most prints
+    jam at a joint, besides link 10; --max-jam-probability makes it exit 1; the result is written as
+    it goes. (The kit is the module's: make_kit hands out the one it built last.)"""
+    out = tmp_path / "tol"
+    code = main(["tolerance", str(CONFIGS / "butterfly_liu2017.yaml"), "--samples", "3000", "--workers", "1",
+                 "--check-samples", "4", "--max-jam-probability", "0.5", "--json", "-o", str(out)])
+    r = json.loads(capsys.readouterr().out)
+    assert code == 1 and r["ok"] is False
+    assert r["groups"]["joint"]["probability"] > 0.5  # 22 joints, each ~5 %: 1 − 0.95²² ≈ 0.66
+    assert r["groups"]["joint"]["count"] == 22
+    joints = [u for u in r["units"] if u["group"] == "joint"]
+    assert all(0.02 < u["probability"] < 0.09 for u in joints)
+    assert {"hole", "pin"} <= {k["kind"] for k in r["sensitivity"]["by_kind"] if k["share"] > 0.05}
+    assert (out / "result.json").is_file()
+    assert len((out / "chunks.jsonl").read_text().splitlines()) == 1 + len(chunk_sizes(3000, studies.CHUNK))
+
+
+def test_cli_bad_input(tmp_path, capsys):
+    out = tmp_path / "tol"
+    assert main(["tolerance", str(CONFIGS / "butterfly.yaml"), "--samples", "0", "-o", str(out)]) == 2
+    assert main(["tolerance", str(CONFIGS / "gear_pair.yaml"), "--samples", "10", "-o", str(out)]) == 2
+    assert "offers no tolerance study" in capsys.readouterr().err
+    t0 = time.perf_counter()
+    assert main(["tolerance", str(CONFIGS / "butterfly.yaml"), "--samples", "10", "--scheduler", "tcp://127.0.0.1:9",
+                 "-o", str(out)]) == 2
+    assert time.perf_counter() - t0 < 10
+    assert "--scheduler" in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_report_section_of_a_written_result(nominal, tmp_path):
+    from partgen.export.studies import tolerance_section
+
+    loaded, _, _ = nominal["butterfly_liu2017"]
+    r = run_local(model_of(nominal, "butterfly_liu2017", FORTUS), 1000)
+    r.update(design_digest=pipeline.design_digest(loaded.raw), seed=0, accuracy_source="test")
+    (tmp_path / "tolerance").mkdir()
+    (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
+    assert pipeline.tolerance_result(loaded.raw, tmp_path) == json.loads(json.dumps(r))
+    title, body = tolerance_section(r)
+    assert title == "Tolerance" and "D10–G11" in body and body.count("<img") == 1
+    r["design_digest"] = "another design"
+    (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
+    assert pipeline.tolerance_result(loaded.raw, tmp_path) is None
