@@ -56,8 +56,8 @@ def render(meshes: list[tuple[np.ndarray, np.ndarray, str]], size_px: tuple[int,
     fig = Figure(figsize=(size_px[0] / dpi, size_px[1] / dpi), dpi=dpi)
     FigureCanvasAgg(fig)
     ax = fig.add_axes([0, 0, 1, 0.92 if title else 1])
-    ax.add_collection(PolyCollection(tri[order][:, :, :2], facecolors=sh[order, :3], edgecolors=sh[order, :3],
-                                     linewidths=0.15, antialiased=False))
+    ax.add_collection(PolyCollection(tri[order][:, :, :2], facecolors=sh[order, :3], edgecolors="none",
+                                     linewidths=0, antialiased=False))
     if len(tri):
         lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
         pad = 0.04 * max(hi - lo)
