@@ -221,12 +221,13 @@ def _cd_pair(target: StageTarget, m: float, alpha: float, lim: TeethLimits, x_ra
 
 def solve_train(targets: list[StageTarget], lim: TeethLimits, m: float, alpha: float, overall: float | None = None,
                 overall_exact: bool = False, x_range: tuple[float, float] = (-0.5, 1.0), ha: float = 1.0,
-                key: str = "train") -> list[StageTeeth]:
+                key: str = "train", default_shift=None) -> list[StageTeeth]:
     """Tooth counts (and shifts for centre distances) of every stage.
 
     targets : one per stage; overall : the train's ratio, split over the stages that give neither
     teeth nor a ratio (``overall_exact``: met exactly). Raises DesignError naming the key path
-    (``train.stages[1].ratio``) with the nearest values that work."""
+    (``train.stages[1].ratio``) with the nearest values that work. ``default_shift(z)``: the shift
+    of a gear whose stage solves none (an idler's, whose next stage gives a centre distance)."""
     if not targets:
         raise DesignError("a train needs at least one stage", f"{key}.stages")
     fixed: dict[int, tuple[int, int]] = {}
@@ -284,7 +285,7 @@ def solve_train(targets: list[StageTarget], lim: TeethLimits, m: float, alpha: f
         if t.centre_distance is not None:
             x1_fixed = out[-1].shifts[1] if (t.idler and out and out[-1].shifts) else None
             if t.idler and x1_fixed is None:
-                x1_fixed = max(0.0, involute.min_profile_shift(z1, alpha, ha))
+                x1_fixed = default_shift(z1) if default_shift else max(0.0, involute.min_profile_shift(z1, alpha, ha))
             try:
                 shifts = shifts_for_centre_distance(z1, z2, m, alpha, t.centre_distance, x1_fixed, ha)
             except ValueError as e:

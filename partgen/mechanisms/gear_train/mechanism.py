@@ -1,0 +1,202 @@
+"""A gear train in a frame (``kind: gear_train``) behind the Mechanism protocol: designed from a table
+of stages (teeth, ratios, centre distances, an overall ratio), built, checked over one turn of the
+slowest shaft, traced on its printed outlines (output against input: transmission error in
+arcminutes, the ratio measured, the backlash at the output) and reported."""
+
+from __future__ import annotations
+
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ...config.loader import LoadedDesign
+from ...config.yamlio import dump_yaml
+from ...core.findings import Result
+from ...core.protocol import Motion, Trace
+from ...errors import DesignError
+from ...geometry.measure import oversize
+from .checks import check_train, sample_thetas
+from .kit import TrainKit, TrainSpec, build_train, resolve_train
+from .motion import turn_train
+from .schema import GearTrainDesign
+
+__all__ = ["GearTrain", "MECHANISM"]
+
+ARCMIN = 60 * 180 / math.pi  # arcminutes per radian
+
+
+def _r6(x) -> float:
+    return float(round(float(x), 6))
+
+
+class GearTrain:
+    kind = "gear_train"
+    title = "gear train"
+    schema = GearTrainDesign
+    motion = Motion("input angle", "rad", (0.0, 2 * math.pi))
+    csv_header = "input_rad,output_rad,transmission_error_arcmin,backlash_arcmin\n"
+    trace_needs_kit = True
+    role_colours = {"gear": "#4c78a8", "frame": "#8c8c8c", "axle": "#e45756"}
+
+    def resolve(self, raw: LoadedDesign) -> TrainSpec:
+        return resolve_train(raw)
+
+    def build(self, spec: TrainSpec, progress=None) -> TrainKit:
+        try:
+            return build_train(spec, progress)
+        except ValueError as e:
+            raise DesignError(str(e), "shafts.diameter_mm") from None
+
+    def refuse(self, spec: TrainSpec, kit: TrainKit) -> None:
+        for part, ext in oversize(kit.parts, spec.printer.envelope):
+            raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                              "gears.module_mm")
+
+    def findings(self, spec: TrainSpec):
+        return []
+
+    def design_summary(self, spec: TrainSpec, kit: TrainKit) -> dict:
+        r = spec.ratio
+        out = {"name": spec.name, "kind": self.kind, "module_mm": spec.system.module,
+               "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)), "face_width_mm": spec.face_width,
+               "ratio": f"{r.numerator}/{r.denominator}", "ratio_value": _r6(float(r)),
+               "output_sense": "same as the input" if spec.shafts[-1].speed > 0 else "opposite to the input",
+               "stages": [{"teeth": [st.driver, st.driven], "ratio": _r6(float(st.ratio)), "idler": st.idler,
+                           "profile_shift": [_r6(spec.gear(m.driver).spec.profile_shift),
+                                             _r6(spec.gear(m.driven).spec.profile_shift)],
+                           "centre_distance_mm": _r6(m.centre_distance), "direction_deg": _r6(math.degrees(m.direction)),
+                           "gears": [m.driver, m.driven]}
+                          for st, m in zip(spec.stages, spec.meshes)],
+               "shafts": [{"centre_mm": [_r6(c) for c in sh.centre], "bore": sh.bore,
+                           "speed": f"{sh.speed.numerator}/{sh.speed.denominator}", "phase_deg": _r6(math.degrees(sh.phase)),
+                           "hub_diameter_mm": _r6(2 * sh.hub_radius)} for sh in spec.shafts],
+               "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
+               "density_g_cm3": _r6(spec.density * 1000)}
+        if spec.target_ratio is not None:
+            out["target_ratio"] = spec.target_ratio
+            out["ratio_error"] = _r6(float(r) / spec.target_ratio - 1)
+        return out
+
+    def kit_files(self, spec: TrainSpec, kit: TrainKit, raw: LoadedDesign) -> dict[str, bytes]:
+        data = raw.document()
+        data["printer"] = "printer.yaml"
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
+
+    def plate_margin(self, spec: TrainSpec) -> float:
+        return spec.checks.plate_margin
+
+    def check(self, spec: TrainSpec, kit: TrainKit, samples: int | None = None, progress=None) -> Result:
+        return check_train(kit, samples, progress)
+
+    def trace(self, spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
+        """Output angle against input angle over one turn of the output, from the printed outlines."""
+        thetas = sample_thetas(spec, samples or 90)
+        turned = turn_train(kit, thetas)
+        o = len(spec.shafts) - 1
+        drive, nominal = turned["drive"][:, o], turned["nominal"][:, o]
+        te = (drive - nominal) * ARCMIN
+        lash = np.abs(turned["coast"][:, o] - drive) * ARCMIN
+        slope = np.polyfit(thetas, drive, 1)[0]
+        stats = {"kind": self.kind, "samples": len(thetas), "ratio_design": float(spec.ratio),
+                 "ratio_measured": float(1.0 / abs(slope)),
+                 "ratio_measured_error": float((1.0 / abs(slope)) / float(spec.ratio) - 1),
+                 "transmission_error_arcmin": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
+                 "backlash_arcmin": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
+                 "max_overlap_mm2": float(turned["overlap_mm2"].max())}
+        files = []
+        if out is not None:
+            (out / "transmission.png").write_bytes(_figure(spec, thetas, te, lash))
+            files = ["transmission.png"]
+        return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_arcmin", "backlash_arcmin"),
+                     data=np.column_stack([thetas, drive, te, lash]))
+
+    def csv(self, trace: Trace) -> str:
+        return self.csv_header + "".join(f"{a:.9f},{b:.9f},{c:.6f},{d:.6f}\n" for a, b, c, d in trace.data)
+
+    def bill_text(self, spec: TrainSpec, man: dict, dest, seconds: float) -> str:
+        r = spec.ratio
+        lines = [f"{spec.name}: ratio {r.numerator}/{r.denominator} = {float(r):.4f}"
+                 + (f" (target {spec.target_ratio:g}, {100 * (float(r) / spec.target_ratio - 1):+.3f} %)"
+                    if spec.target_ratio else "") + f", module {spec.system.module:g} mm, {len(spec.stages)} stage(s): "
+                 + ", ".join(f"{st.driver}/{st.driven}" for st in spec.stages)]
+        lines += [f"{p['name']:<14}{p['role']:<7}{p['count']:>3}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 "
+                  f"{p['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm" for p in man["parts"]]
+        lines.append(f"wrote {dest}/ in {seconds:.2f} s")
+        return "\n".join(lines)
+
+    def check_text(self, spec: TrainSpec, result: Result, folder, seconds: float) -> str:
+        f = result.figures
+        lines = [f"{spec.name}: {f['samples']} angles over one turn of the slowest shaft ({f['input_turns']:g} input turns)"]
+        for row in f.get("meshes", []):
+            lines.append(f"  {'/'.join(row['pair'])} {row['teeth'][0]}/{row['teeth'][1]}: centre distance "
+                         f"{row['centre_distance_mm']:.3f} mm, backlash {row['backlash_mm']:.3f} mm (measured "
+                         f"{row['measured_backlash_mm']:.3f}), contact ratio {row['contact_ratio']:.3f}")
+        b = f.get("output_backlash_arcmin", {})
+        if b:
+            lines.append(f"  backlash at the output {b['min']:.1f}–{b['max']:.1f} arcmin (printed outlines)")
+        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
+                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
+        return "\n".join(lines)
+
+    def trace_text(self, spec: TrainSpec, trace: Trace, folder) -> str:
+        s = trace.stats
+        lines = [f"{spec.name}: ratio measured {s['ratio_measured']:.5f} (design {s['ratio_design']:.5f}), "
+                 f"{s['samples']} angles over one output turn",
+                 f"  transmission error {s['transmission_error_arcmin']['peak_to_peak']:.2f} arcmin peak to peak at the "
+                 f"output; backlash {s['backlash_arcmin']['min']:.1f}–{s['backlash_arcmin']['max']:.1f} arcmin"]
+        if folder:
+            lines.append(f"plots: {folder}/{', '.join(trace.files)}")
+        return "\n".join(lines)
+
+    def report_sections(self, spec: TrainSpec, kit: TrainKit, result: Result, trace: Trace, files: dict,
+                        common: dict) -> list[tuple[str, str]]:
+        from ...export import report as R
+
+        rows = [[k, f"{st.driver}/{st.driven}", round(float(st.ratio), 4),
+                 f"{spec.gear(m.driver).spec.profile_shift:.3f}/{spec.gear(m.driven).spec.profile_shift:.3f}",
+                 round(m.centre_distance, 3), "idler" if st.idler else "compound" if k else "input"]
+                for k, (st, m) in enumerate(zip(spec.stages, spec.meshes))]
+        r = spec.ratio
+        design = R.table(["stage", "teeth", "ratio", "profile shift", "centre distance mm", "driven from"], rows) + (
+            f"<p>Overall ratio {r.numerator}/{r.denominator} = {float(r):.5f}"
+            + (f" (target {spec.target_ratio:g})" if spec.target_ratio else "")
+            + f"; module {spec.system.module:g} mm, pressure angle {math.degrees(spec.system.pressure_angle):g}°, "
+            f"face width {spec.face_width:g} mm, shafts Ø{2 * spec.shaft_radius:g} mm.</p>")
+        t = trace.stats
+        check = (f'<p class="{"ok" if result.ok else "fail"}">{result.figures["samples"]} angles over one turn of the '
+                 f'slowest shaft; measured ratio {t["ratio_measured"]:.5f}, transmission error '
+                 f'{t["transmission_error_arcmin"]["peak_to_peak"]:.2f} arcmin peak to peak, backlash at the output '
+                 f'{t["backlash_arcmin"]["min"]:.1f}–{t["backlash_arcmin"]["max"]:.1f} arcmin.</p>')
+        return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+
+    def subtitle(self, spec: TrainSpec) -> str:
+        r = spec.ratio
+        return f"{len(spec.stages)}-stage gear train, ratio {r.numerator}/{r.denominator}"
+
+
+def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray) -> bytes:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    deg = np.degrees(thetas)
+    ax.plot(deg, te, label="transmission error at the output (drive flanks), arcmin")
+    ax.plot(deg, lash, label="backlash at the output, arcmin")
+    ax.set_xlabel("input angle (°)")
+    ax.set_ylabel("arcmin at the output")
+    ax.set_title(f"{spec.name}: over one turn of the output, from the printed outlines")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    buf = io.BytesIO()
+    fig.tight_layout()
+    fig.savefig(buf, format="png", dpi=110)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+MECHANISM = GearTrain()
