@@ -27,7 +27,7 @@ from . import involute
 
 __all__ = ["TeethLimits", "StageTarget", "StageTeeth", "teeth_for_ratio", "split_ratio", "shift_sum_for_centre_distance",
            "split_shift", "shifts_for_centre_distance", "centre_distance_range", "solve_train", "train_ratio",
-           "shaft_speeds", "mesh_phase"]
+           "shaft_speeds", "mesh_phase", "Transverse", "transverse_system", "overlap_ratio", "twist_over"]
 
 
 @dataclass(frozen=True)
@@ -331,3 +331,41 @@ def mesh_phase(psi_driver: float, z_driver: int, z_driven: int, direction: float
     if internal:
         return direction + 2 * math.pi * (u - 0.5) / z_driven
     return direction + math.pi + 2 * math.pi * (0.5 - u) / z_driven
+
+
+@dataclass(frozen=True)
+class Transverse:
+    """A helical gear's tooth system in its transverse plane (the plane the outline is generated in):
+    module (mm), pressure angle (rad), addendum, dedendum and cutter tip radius coefficients (× the
+    transverse module), and the factor a normal profile shift coefficient is multiplied by."""
+
+    module: float
+    pressure_angle: float
+    addendum_coeff: float
+    dedendum_coeff: float
+    cutter_tip_coeff: float
+    shift_factor: float
+
+
+def transverse_system(module: float, alpha: float, beta: float, system: str = "normal", ha: float = 1.0,
+                      hf: float = 1.25, rho: float = 0.38) -> Transverse:
+    """The transverse tooth system of a helical gear of helix angle ``beta`` (rad, at the reference
+    cylinder). ``system`` says what ``module`` and ``alpha`` are: ``normal`` (a standard hob's: m_t =
+    m_n / cos β, tan α_t = tan α_n / cos β; addendum, dedendum and shift keep their mm, so their
+    coefficients × cos β; the cutter's tip fillet keeps its radius in mm (its transverse section is
+    an ellipse: the fillet is the one approximation, the flanks are exact involutes)) or
+    ``transverse`` (already the transverse values)."""
+    if system == "transverse" or beta == 0.0:
+        return Transverse(module, alpha, ha, hf, rho, 1.0)
+    c = math.cos(beta)
+    return Transverse(module / c, math.atan(math.tan(alpha) / c), ha * c, hf * c, rho * c, c)
+
+
+def overlap_ratio(face_width: float, beta: float, normal_module: float) -> float:
+    """Overlap (face) contact ratio ε_β = b sin β / (π m_n) of a helical mesh of face width b (mm)."""
+    return face_width * math.sin(abs(beta)) / (math.pi * normal_module)
+
+
+def twist_over(face_width: float, beta: float, pitch_radius: float) -> float:
+    """How far (rad) a helical gear's transverse section turns over ``face_width`` mm: b tan β / r."""
+    return face_width * math.tan(beta) / pitch_radius

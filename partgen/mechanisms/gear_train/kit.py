@@ -25,12 +25,13 @@ from ...core.parts import Part
 from ...core.printer import PrinterLimits
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
-from ...design.gear_train import StageTarget, StageTeeth, TeethLimits, mesh_phase, shaft_speeds, solve_train, train_ratio
+from ...design.gear_train import (StageTarget, StageTeeth, TeethLimits, mesh_phase, shaft_speeds, solve_train,
+                                  train_ratio, transverse_system, twist_over)
 from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from ...design.mechanism import CheckSettings
 from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError, DesignError
-from ...geometry.gear import gear_body
+from ...geometry.gear import gear_body, helical_body
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import extrude, prisms, slab, union
@@ -49,6 +50,7 @@ class TrainGear:
     shaft: int
     layer: int
     spec: GearSpec
+    hand: int = 0  # +1 right-hand (its section turns counter-clockwise going up), -1 left-hand, 0 spur
 
 
 @dataclass(frozen=True)
@@ -113,6 +115,14 @@ class TrainSpec:
     material: str
     printer: PrinterLimits
     tol: float
+    helix: float = 0.0  # rad, at the reference cylinder (0: spur)
+    herringbone: bool = False
+    normal_module: float = 0.0  # mm (the transverse module × cos helix)
+
+    def twist(self, g: TrainGear) -> float:
+        """How far (rad, signed) gear ``g``'s section turns from the bottom of its face to the top
+        (a herringbone's to its middle and back)."""
+        return g.hand * twist_over(self.face_width, self.helix, g.spec.pitch_radius) if self.helix else 0.0
 
     @property
     def layers(self) -> int:
@@ -158,18 +168,22 @@ def _fit(loaded: LoadedDesign, key: str, value) -> float:
 def resolve_train(loaded: LoadedDesign) -> TrainSpec:
     d, p = loaded.design, loaded.printer
     g, t, fr = d.gears, d.train, d.frame
-    alpha = math.radians(g.pressure_angle_deg)
-    system = ToothSystem(module=g.module_mm, pressure_angle=alpha, addendum_coeff=g.addendum_coeff,
-                         dedendum_coeff=g.dedendum_coeff, backlash_per_gear=g.backlash_per_gear_mm,
-                         profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
+    beta = math.radians(g.helix_angle_deg)
+    T = transverse_system(g.module_mm, math.radians(g.pressure_angle_deg), beta, g.helix_system, g.addendum_coeff,
+                          g.dedendum_coeff)
+    alpha, module = T.pressure_angle, T.module
+    system = ToothSystem(module=module, pressure_angle=alpha, addendum_coeff=T.addendum_coeff,
+                         dedendum_coeff=T.dedendum_coeff, cutter_tip_coeff=T.cutter_tip_coeff,
+                         backlash_per_gear=g.backlash_per_gear_mm,
+                         profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift) * T.shift_factor,
                          chord_tolerance=g.chord_tolerance_mm)
     bed = min(p.build_envelope_mm[:2])
-    lim = TeethLimits(g.min_teeth, g.max_teeth, bed - 2 * (g.addendum_coeff + 1.5) * g.module_mm, g.module_mm)
+    lim = TeethLimits(g.min_teeth, g.max_teeth, bed - 2 * (g.addendum_coeff + 1.5) * module, module)
     targets = [StageTarget(tuple(s.teeth) if s.teeth else None, s.ratio, s.exact, s.centre_distance_mm, s.idler)
                for s in t.stages]
     try:
-        stages = solve_train(targets, lim, g.module_mm, alpha, t.ratio, t.ratio_exact, tuple(g.shift_range),
-                             g.addendum_coeff, key="train",
+        stages = solve_train(targets, lim, module, alpha, t.ratio, t.ratio_exact,
+                             tuple(x * T.shift_factor for x in g.shift_range), T.addendum_coeff, key="train",
                              default_shift=lambda z: make_gear(z, system).profile_shift)
     except DesignError as e:
         raise ConfigError(loaded.path, e.key_path, e.problem) from None
@@ -181,16 +195,17 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
     gears: list[TrainGear] = []
     by_shaft: dict[int, list[TrainGear]] = {}
 
-    def add(shaft: int, lay: int, z: int, x: float | None, key: str) -> TrainGear:
+    def add(shaft: int, lay: int, z: int, x: float | None, key: str, hand: int) -> TrainGear:
         for have in by_shaft.get(shaft, []):
             if have.layer == lay:
                 return have
+            hand = have.hand  # a compound shaft's gears share their hand: their axial thrusts oppose
         spec = make_gear(z, system) if x is None else GearSpec(int(z), system, float(x))
         try:
             check_generable(spec)
         except ToothSystemError as e:
             raise ConfigError(loaded.path, "gears.profile_shift" if e.field == "profile_shift" else key, e.problem) from None
-        gear = TrainGear(f"gear{shaft}.{lay}", shaft, lay, spec)
+        gear = TrainGear(f"gear{shaft}.{lay}", shaft, lay, spec, hand if beta else 0)
         gears.append(gear)
         by_shaft.setdefault(shaft, []).append(gear)
         return gear
@@ -199,8 +214,8 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
     direction = 0.0
     for k, s in enumerate(stages):
         x1, x2 = s.shifts if s.shifts else (None, None)
-        a = add(k, layer[k], s.driver, x1, f"train.stages[{k}].teeth[0]")
-        b = add(k + 1, layer[k], s.driven, x2, f"train.stages[{k}].teeth[1]")
+        a = add(k, layer[k], s.driver, x1, f"train.stages[{k}].teeth[0]", 1)
+        b = add(k + 1, layer[k], s.driven, x2, f"train.stages[{k}].teeth[1]", -a.hand)
         direction += math.radians(t.stages[k].angle_deg)
         meshes.append(Mesh(k, a.name, b.name, direction, centre_distance(a.spec, b.spec)))
     # shaft centres, speeds and phases (each stage puts a tooth space of its driven gear on a tooth of its driver)
@@ -262,7 +277,7 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
     return TrainSpec(d.name, system, f, tuple(stages), t.ratio, tuple(gears), tuple(shafts), tuple(meshes), r_shaft,
                      running, press, d.shafts.extension_mm, gap, fr.plate_thickness_mm, fr.margin_mm,
                      fr.spacer_diameter_mm / 2, checks, d.material.density_g_cm3 / 1000.0, d.material.name,
-                     printer_limits(p), g.chord_tolerance_mm)
+                     printer_limits(p), g.chord_tolerance_mm, beta, g.herringbone, module * math.cos(beta))
 
 
 @dataclass(frozen=True)
@@ -319,7 +334,9 @@ def _gear_part(s: TrainSpec, sh: Shaft) -> Part:
     mine = sorted((g for g in s.gears if g.shaft == sh.index), key=lambda g: g.layer)
     hole = _bore(s, sh)
     tol = FEATURE_TOL
-    solids = [gear_body(g.spec, s.face_width, hole, s.layer_z(g.layer)) for g in mine]
+    solids = [helical_body(g.spec, s.face_width, hole, s.layer_z(g.layer), s.twist(g), s.herringbone,
+                           s.system.chord_tolerance) if g.hand else gear_body(g.spec, s.face_width, hole, s.layer_z(g.layer))
+              for g in mine]
     web = []
     lo = s.layer_z(mine[0].layer)
     if lo > s.gap + 1e-9:  # a hub down to the thrust ring

@@ -27,9 +27,14 @@ class TrainGears(Strict):
     chord_tolerance_mm: Annotated[float, Field(ge=0.001, le=0.1)] = 0.01
     min_teeth: Teeth = 12
     max_teeth: Teeth = 100
+    helix_angle_deg: Annotated[float, Field(ge=0.0, le=45.0)] = 0.0  # at the reference cylinder; 0: spur
+    helix_system: Literal["normal", "transverse"] = "normal"  # what module_mm and pressure_angle_deg are
+    herringbone: bool = False  # two mirrored helical halves
 
     @model_validator(mode="after")
     def _ranges(self):
+        if self.herringbone and self.helix_angle_deg == 0:
+            raise ValueError("[herringbone] needs a helix angle: give helix_angle_deg")
         if self.shift_range[0] >= self.shift_range[1]:
             raise ValueError(f"[shift_range] must be [lowest, highest], got {self.shift_range}")
         if self.min_teeth > self.max_teeth:
