@@ -319,17 +319,18 @@ def shaft_speeds(stages: list[StageTeeth], internal: tuple[bool, ...] = ()) -> l
 
 def mesh_phase(psi_driver: float, z_driver: int, z_driven: int, direction: float, internal: bool = False) -> float:
     """The driven gear's angle (rad) that puts a tooth space of it on a tooth of the driver, for the
-    driver at ``psi_driver`` (tooth 0 of each gear on its local +x) and the driven centre in the
-    ``direction`` (rad) from the driver's.
+    driver at ``psi_driver`` (tooth 0 of each gear on its local +x).
 
-    External: with u = (ψ_d − β) z_d / 2π (the driver's tooth phase on the line of centres) and v =
-    (ψ_n − β − π) z_n / 2π (the driven's, facing back), rolling keeps u + v; a tooth in a space is
-    u + v ≡ ½. Internal (the driven a ring around the driver, teeth facing in): the ring's space must
-    face the driver's tooth along β itself, and rolling keeps u − v with v = (ψ_n − β) z_n / 2π:
-    u − v ≡ ½."""
+    External: ``direction`` (rad) is the driven centre's from the driver's. With u = (ψ_d − β) z_d / 2π
+    (the driver's tooth phase on the line of centres) and v = (ψ_n − β − π) z_n / 2π (the driven's,
+    facing back), rolling keeps u + v; a tooth in a space is u + v ≡ ½.
+    Internal (the driven is a ring round the driver, its tooth *space* 0 on its local +x, see
+    design.planetary): ``direction`` is the driver's centre seen from the ring's, which is where they
+    mesh; the ring's space must face the driver's tooth along it, v = (ψ_n − β) z_n / 2π, and rolling
+    inside keeps u − v: u − v ≡ 0."""
     u = (psi_driver - direction) * z_driver / (2 * math.pi)
     if internal:
-        return direction + 2 * math.pi * (u - 0.5) / z_driven
+        return direction + 2 * math.pi * u / z_driven
     return direction + math.pi + 2 * math.pi * (0.5 - u) / z_driven
 
 

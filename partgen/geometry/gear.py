@@ -65,3 +65,17 @@ def helical_body(spec: GearSpec, face_width: float, hole: Polygon, z0: float, tw
         raise ValueError(f"a {spec.teeth}-tooth gear's root circle (Ø{2 * spec.root_radius:.2f} mm) cannot hold its bore")
     bore = m3d.Manifold.extrude(cross_section(hole_xy), face_width + 2.0).translate((0.0, 0.0, -1.0))
     return (body - bore).translate((0.0, 0.0, z0))
+
+
+def ring_body(space: GearSpec, rim_radius: float, face_width: float, z0: float = 0.0) -> m3d.Manifold:
+    """An internal (ring) gear from z0 to z0 + face_width: the disc of ``rim_radius`` less the
+    outline of its space gear ``space`` (design.planetary: an external gear whose teeth are the
+    ring's tooth spaces), mm."""
+    if rim_radius <= space.tip_radius:
+        raise ValueError(f"a rim of radius {rim_radius:.2f} mm does not hold a ring whose root radius is "
+                         f"{space.tip_radius:.2f} mm")
+    from .outline import circle_points
+
+    cs = cross_section(circle_points(rim_radius, space.system.chord_tolerance * 10)) - cross_section(
+        gear_outline(space).points)
+    return extrude(cs, face_width, z0)

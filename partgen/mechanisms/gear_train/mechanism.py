@@ -20,6 +20,7 @@ from ...geometry.measure import oversize
 from .checks import check_train, sample_thetas
 from .kit import TrainKit, TrainSpec, build_train, resolve_train
 from .motion import turn_train
+from .planetary import PlanetaryKit, PlanetarySpec, build_planetary, check_planetary, resolve_planetary, turn_planetary
 from .schema import GearTrainDesign
 
 __all__ = ["GearTrain", "MECHANISM"]
@@ -40,12 +41,12 @@ class GearTrain:
     trace_needs_kit = True
     role_colours = {"gear": "#4c78a8", "frame": "#8c8c8c", "axle": "#e45756"}
 
-    def resolve(self, raw: LoadedDesign) -> TrainSpec:
-        return resolve_train(raw)
+    def resolve(self, raw: LoadedDesign) -> TrainSpec | PlanetarySpec:
+        return resolve_planetary(raw) if raw.design.planetary is not None else resolve_train(raw)
 
-    def build(self, spec: TrainSpec, progress=None) -> TrainKit:
+    def build(self, spec: TrainSpec | PlanetarySpec, progress=None) -> TrainKit | PlanetaryKit:
         try:
-            return build_train(spec, progress)
+            return build_planetary(spec, progress) if isinstance(spec, PlanetarySpec) else build_train(spec, progress)
         except ValueError as e:
             raise DesignError(str(e), "shafts.diameter_mm") from None
 
@@ -58,6 +59,8 @@ class GearTrain:
         return []
 
     def design_summary(self, spec: TrainSpec, kit: TrainKit) -> dict:
+        if isinstance(spec, PlanetarySpec):
+            return _planetary_summary(spec)
         r = spec.ratio
         out = {"name": spec.name, "kind": self.kind, "module_mm": spec.system.module,
                "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)), "face_width_mm": spec.face_width,
@@ -88,18 +91,26 @@ class GearTrain:
         return spec.checks.plate_margin
 
     def check(self, spec: TrainSpec, kit: TrainKit, samples: int | None = None, progress=None) -> Result:
+        if isinstance(spec, PlanetarySpec):
+            return check_planetary(kit, samples, progress)
         return check_train(kit, samples, progress)
 
     def trace(self, spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """Output angle against input angle over one turn of the output, from the printed outlines."""
-        thetas = sample_thetas(spec, samples or 90)
-        turned = turn_train(kit, thetas)
-        o = len(spec.shafts) - 1
-        drive, nominal = turned["drive"][:, o], turned["nominal"][:, o]
+        if isinstance(spec, PlanetarySpec):
+            thetas = np.linspace(0.0, spec.output_turn, samples or 90, endpoint=False)
+            turned = turn_planetary(kit, thetas)
+            drive, nominal, coast = turned["drive"], turned["nominal"], turned["coast"]
+        else:
+            thetas = sample_thetas(spec, samples or 90)
+            turned = turn_train(kit, thetas)
+            o = len(spec.shafts) - 1
+            drive, nominal, coast = turned["drive"][:, o], turned["nominal"][:, o], turned["coast"][:, o]
         te = (drive - nominal) * ARCMIN
-        lash = np.abs(turned["coast"][:, o] - drive) * ARCMIN
+        lash = np.abs(coast - drive) * ARCMIN
         slope = np.polyfit(thetas, drive, 1)[0]
         stats = {"kind": self.kind, "samples": len(thetas), "ratio_design": float(spec.ratio),
+                 "output": "carrier" if isinstance(spec, PlanetarySpec) else f"shaft {len(spec.shafts) - 1}",
                  "ratio_measured": float(1.0 / abs(slope)),
                  "ratio_measured_error": float((1.0 / abs(slope)) / float(spec.ratio) - 1),
                  "transmission_error_arcmin": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
@@ -117,7 +128,14 @@ class GearTrain:
 
     def bill_text(self, spec: TrainSpec, man: dict, dest, seconds: float) -> str:
         r = spec.ratio
-        lines = [f"{spec.name}: ratio {r.numerator}/{r.denominator} = {float(r):.4f}"
+        if isinstance(spec, PlanetarySpec):
+            t = spec.teeth
+            head = (f"{spec.name}: planetary, sun {t.sun} / planet {t.planet} ×{t.planets} / ring {t.ring}, ratio "
+                    f"{t.ratio:.4f}" + (f" (target {spec.target_ratio:g})" if spec.target_ratio else "")
+                    + f", module {spec.system.module:g} mm")
+        else:
+            head = None
+        lines = [head] if head else [f"{spec.name}: ratio {r.numerator}/{r.denominator} = {float(r):.4f}"
                  + (f" (target {spec.target_ratio:g}, {100 * (float(r) / spec.target_ratio - 1):+.3f} %)"
                     if spec.target_ratio else "") + f", module {spec.system.module:g} mm, {len(spec.stages)} stage(s): "
                  + ", ".join(f"{st.driver}/{st.driven}" for st in spec.stages)]
@@ -133,6 +151,11 @@ class GearTrain:
             lines.append(f"  {'/'.join(row['pair'])} {row['teeth'][0]}/{row['teeth'][1]}: centre distance "
                          f"{row['centre_distance_mm']:.3f} mm, backlash {row['backlash_mm']:.3f} mm (measured "
                          f"{row['measured_backlash_mm']:.3f}), contact ratio {row['contact_ratio']:.3f}")
+        im = f.get("internal_mesh")
+        if im:
+            lines.append(f"  planet/ring {im['teeth'][0]}/{im['teeth'][1]} (internal): contact ratio {im['contact_ratio']:.3f}, "
+                         f"tip-root {min(im['tip_root_mm'].values()):.3f} mm, planets' tips {im['planet_tip_gap_mm']:.2f} mm "
+                         f"apart, assembly {im['assembly']}")
         b = f.get("output_backlash_arcmin", {})
         if b:
             lines.append(f"  backlash at the output {b['min']:.1f}–{b['max']:.1f} arcmin (printed outlines)")
@@ -155,6 +178,19 @@ class GearTrain:
                         common: dict) -> list[tuple[str, str]]:
         from ...export import report as R
 
+        if isinstance(spec, PlanetarySpec):
+            t, st = spec.teeth, trace.stats
+            design = R.table(["", "sun", "planet", "ring"], [["teeth", t.sun, t.planet, t.ring],
+                                                             ["count", 1, t.planets, 1]]) + (
+                f"<p>Ring fixed, sun input, carrier output: ratio 1 + {t.ring}/{t.sun} = {t.ratio:.5f}; "
+                f"(z_sun + z_ring)/N = {(t.sun + t.ring) / t.planets:g}; planets at "
+                f"{', '.join(f'{math.degrees(a):.2f}°' for a in spec.angles)}; module {spec.system.module:g} mm.</p>")
+            check = (f'<p class="{"ok" if result.ok else "fail"}">{result.figures["samples"]} angles over one carrier '
+                     f'turn; measured ratio {st["ratio_measured"]:.5f}, transmission error '
+                     f'{st["transmission_error_arcmin"]["peak_to_peak"]:.2f} arcmin peak to peak, backlash at the carrier '
+                     f'{st["backlash_arcmin"]["min"]:.1f}–{st["backlash_arcmin"]["max"]:.1f} arcmin.</p>')
+            return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+
         rows = [[k, f"{st.driver}/{st.driven}", round(float(st.ratio), 4),
                  f"{spec.gear(m.driver).spec.profile_shift:.3f}/{spec.gear(m.driven).spec.profile_shift:.3f}",
                  round(m.centre_distance, 3), "idler" if st.idler else "compound" if k else "input"]
@@ -173,8 +209,29 @@ class GearTrain:
         return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
 
     def subtitle(self, spec: TrainSpec) -> str:
+        if isinstance(spec, PlanetarySpec):
+            return f"planetary set, {spec.teeth.planets} planets, ratio {spec.ratio:.4f}"
         r = spec.ratio
         return f"{len(spec.stages)}-stage gear train, ratio {r.numerator}/{r.denominator}"
+
+
+def _planetary_summary(spec: PlanetarySpec) -> dict:
+    t = spec.teeth
+    out = {"name": spec.name, "kind": "gear_train", "arrangement": "planetary: ring fixed, sun input, carrier output",
+           "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
+           "face_width_mm": spec.face_width, "teeth": {"sun": t.sun, "planet": t.planet, "ring": t.ring},
+           "planets": t.planets, "ratio": f"1 + {t.ring}/{t.sun}", "ratio_value": _r6(t.ratio),
+           "assembly": f"({t.sun} + {t.ring})/{t.planets} = {(t.sun + t.ring) / t.planets:g}",
+           "planet_angles_deg": [_r6(math.degrees(a)) for a in spec.angles],
+           "planet_phases_deg": [_r6(math.degrees(a)) for a in spec.planet_phases],
+           "ring_phase_deg": _r6(math.degrees(spec.ring_phase)), "centre_distance_mm": _r6(spec.centre_distance),
+           "ring_tip_diameter_mm": _r6(2 * (spec.space.root_radius)), "ring_root_diameter_mm": _r6(2 * spec.space.tip_radius),
+           "shaft_diameter_mm": 2 * spec.shaft_radius, "pin_diameter_mm": 2 * spec.pin_radius,
+           "printer": spec.printer.name, "material": spec.material, "density_g_cm3": _r6(spec.density * 1000)}
+    if spec.target_ratio is not None:
+        out["target_ratio"] = spec.target_ratio
+        out["ratio_error"] = _r6(t.ratio / spec.target_ratio - 1)
+    return out
 
 
 def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray) -> bytes:

@@ -65,6 +65,26 @@ class Train(Strict):
     stages: Annotated[list[Stage], Field(min_length=1, max_length=8)]
 
 
+class Planetary(Strict):
+    """A planetary set: the ring fixed in the frame, the sun on the input shaft, the carrier on the output."""
+
+    ratio: Annotated[float, Field(gt=1.0, le=100)] | None = None  # 1 + z_ring / z_sun to meet
+    exact: bool = False
+    teeth: Annotated[list[Teeth], Field(min_length=3, max_length=3)] | None = None  # sun, planet, ring
+    planets: Annotated[int, Field(ge=2, le=8)] = 3
+    spacing: Literal["equal", "unequal"] = "equal"  # unequal: where (z_sun + z_ring) γ / 2π is whole
+    pin_diameter_mm: Length | None = None  # the carrier's pins the planets run on [shafts.diameter_mm]
+    rim_mm: Length = 5.0  # the ring's wall beyond its root circle
+
+    @model_validator(mode="after")
+    def _one_way(self):
+        if (self.ratio is None) == (self.teeth is None):
+            raise ValueError("[ratio] give the ratio to meet or the teeth (sun, planet, ring), one of them")
+        if self.exact and self.ratio is None:
+            raise ValueError("[exact] says a ratio must be met exactly: give the ratio")
+        return self
+
+
 class Shafts(Strict):
     diameter_mm: Length = 8.0
     running_clearance_diametral_mm: Literal["printer"] | Annotated[float, Field(ge=0, le=5)] = "printer"
@@ -98,8 +118,17 @@ class GearTrainDesign(Strict):
     description: Text = ""
     printer: Annotated[str, Field(min_length=1, max_length=500)]
     gears: TrainGears
-    train: Train
+    train: Train | None = None
+    planetary: Planetary | None = None
     shafts: Shafts = Shafts()
     frame: Frame = Frame()
     checks: TrainChecks = TrainChecks()
     material: Material
+
+    @model_validator(mode="after")
+    def _train_or_planetary(self):
+        if (self.train is None) == (self.planetary is None):
+            raise ValueError("[train] give a train of stages or a planetary set (planetary), one of them")
+        if self.planetary is not None and self.gears.helix_angle_deg:
+            raise ValueError("[gears.helix_angle_deg] a planetary set's gears are spur (helical rings are not made)")
+        return self
