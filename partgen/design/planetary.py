@@ -30,6 +30,7 @@ __all__ = ["internal_working_angle", "internal_centre_distance", "internal_conta
            "ring_root_radius", "PlanetaryTeeth", "planetary_teeth", "assembly_whole", "planet_angles",
            "planet_clearance", "MIN_TOOTH_DIFFERENCE", "ring_contact_on_pinion"]
 
+MAX_RATIO_ERROR = 0.02  # a planetary ratio farther than this from the one asked is refused, not built
 MIN_TOOTH_DIFFERENCE = 10  # ring minus pinion, 20° full depth: below it tip and trochoidal interference set in
 
 
@@ -133,7 +134,7 @@ def planetary_teeth(ratio: float, n: int, min_teeth: int, max_teeth: int, m: flo
     (z_r = z_s + 2 z_p), assembling (equally spaced: (z_s + z_r)/n whole), neighbouring planets
     ``clearance`` mm apart, ring minus planet at least MIN_TOOTH_DIFFERENCE, every count in the
     limits (the ring up to max_teeth × 3). Smallest ratio error, then the smallest ring."""
-    best = None
+    best, reach = None, [math.inf, -math.inf]
     for zs in range(min_teeth, max_teeth + 1):
         for zp in range(min_teeth, max_teeth + 1):
             zr = zs + 2 * zp
@@ -145,15 +146,17 @@ def planetary_teeth(ratio: float, n: int, min_teeth: int, max_teeth: int, m: flo
             if planet_clearance(planet_angles(zs, zr, n, equal), a, m * (zp / 2 + ha)) < clearance:
                 continue
             got = 1 + zr / zs
+            reach = [min(reach[0], got), max(reach[1], got)]
             err = abs(got - ratio) / ratio
             if exact and err > 1e-12:
                 continue
             score = (round(err, 12), zr, zs)
             if best is None or score < best[0]:
                 best = (score, PlanetaryTeeth(zs, zp, zr, n))
-    if best is None:
+    if best is None or best[0][0] > MAX_RATIO_ERROR:
+        span = f"ratios from {reach[0]:.3f} to {reach[1]:.3f} can be met" if reach[0] < math.inf else "no ratio can be met"
         raise DesignError(f"no sun, planet and ring in {min_teeth}–{max_teeth} teeth give the ratio {ratio:g}"
-                          f"{' exactly' if exact else ''} with {n} planets{' equally spaced' if equal else ''} "
-                          f"(ratios from 1 + 2·{min_teeth + 1}/{max_teeth} up work with few planets): "
-                          "another ratio, fewer planets, unequal spacing or wider tooth limits", key)
+                          f"{' exactly' if exact else f' within {100 * MAX_RATIO_ERROR:g} %'} with {n} planets"
+                          f"{' equally spaced' if equal else ''} ({span}): another ratio, fewer planets, unequal "
+                          "spacing or wider tooth limits", key)
     return best[1]
