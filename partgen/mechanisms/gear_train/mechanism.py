@@ -21,6 +21,7 @@ from .checks import check_train, sample_thetas
 from .kit import TrainKit, TrainSpec, build_train, resolve_train
 from .motion import turn_train
 from .planetary import PlanetaryKit, PlanetarySpec, build_planetary, check_planetary, resolve_planetary, turn_planetary
+from .rack import RackKit, RackSpec, build_rack, check_rack, resolve_rack, turn_rack
 from .schema import GearTrainDesign
 
 __all__ = ["GearTrain", "MECHANISM"]
@@ -42,10 +43,14 @@ class GearTrain:
     role_colours = {"gear": "#4c78a8", "frame": "#8c8c8c", "axle": "#e45756"}
 
     def resolve(self, raw: LoadedDesign) -> TrainSpec | PlanetarySpec:
+        if raw.design.rack is not None:
+            return resolve_rack(raw)
         return resolve_planetary(raw) if raw.design.planetary is not None else resolve_train(raw)
 
     def build(self, spec: TrainSpec | PlanetarySpec, progress=None) -> TrainKit | PlanetaryKit:
         try:
+            if isinstance(spec, RackSpec):
+                return build_rack(spec, progress)
             return build_planetary(spec, progress) if isinstance(spec, PlanetarySpec) else build_train(spec, progress)
         except ValueError as e:
             raise DesignError(str(e), "shafts.diameter_mm") from None
@@ -61,6 +66,8 @@ class GearTrain:
     def design_summary(self, spec: TrainSpec, kit: TrainKit) -> dict:
         if isinstance(spec, PlanetarySpec):
             return _planetary_summary(spec)
+        if isinstance(spec, RackSpec):
+            return _rack_summary(spec)
         r = spec.ratio
         out = {"name": spec.name, "kind": self.kind, "module_mm": spec.system.module,
                "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)), "face_width_mm": spec.face_width,
@@ -93,10 +100,15 @@ class GearTrain:
     def check(self, spec: TrainSpec, kit: TrainKit, samples: int | None = None, progress=None) -> Result:
         if isinstance(spec, PlanetarySpec):
             return check_planetary(kit, samples, progress)
+        if isinstance(spec, RackSpec):
+            return check_rack(kit, samples, progress)
         return check_train(kit, samples, progress)
 
     def trace(self, spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
-        """Output angle against input angle over one turn of the output, from the printed outlines."""
+        """Output angle against input angle over one turn of the output, from the printed outlines (a
+        rack's travel against the pinion's angle over its travel)."""
+        if isinstance(spec, RackSpec):
+            return self._trace_rack(spec, kit, samples, out)
         if isinstance(spec, PlanetarySpec):
             thetas = np.linspace(0.0, spec.output_turn, samples or 90, endpoint=False)
             turned = turn_planetary(kit, thetas)
@@ -123,18 +135,41 @@ class GearTrain:
         return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_arcmin", "backlash_arcmin"),
                      data=np.column_stack([thetas, drive, te, lash]))
 
+    def _trace_rack(self, spec: RackSpec, kit: RackKit, samples: int | None, out: Path | None) -> Trace:
+        thetas = np.linspace(*spec.thetas_range, samples or 90)
+        turned = turn_rack(kit, thetas)
+        te = (turned["drive"] - turned["nominal"]) * 1000  # µm
+        lash = turned["coast"] - turned["drive"]
+        slope = np.polyfit(thetas, turned["drive"], 1)[0]
+        stats = {"kind": self.kind, "samples": len(thetas), "output": "rack",
+                 "ratio_design": spec.pinion.pitch_radius, "ratio_measured": float(slope),
+                 "ratio_unit": "mm of rack per rad of pinion",
+                 "ratio_measured_error": float(slope / spec.pinion.pitch_radius - 1),
+                 "transmission_error_um": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
+                 "backlash_mm": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
+                 "max_overlap_mm2": float(turned["overlap_mm2"].max())}
+        files = []
+        if out is not None:
+            (out / "transmission.png").write_bytes(_figure(spec, thetas, te, lash * 1000, "µm at the rack"))
+            files = ["transmission.png"]
+        return Trace(stats, files, columns=("input_rad", "output_mm", "transmission_error_um", "backlash_mm"),
+                     data=np.column_stack([thetas, turned["drive"], te, lash]))
+
     def csv(self, trace: Trace) -> str:
         return self.csv_header + "".join(f"{a:.9f},{b:.9f},{c:.6f},{d:.6f}\n" for a, b, c, d in trace.data)
 
     def bill_text(self, spec: TrainSpec, man: dict, dest, seconds: float) -> str:
-        r = spec.ratio
-        if isinstance(spec, PlanetarySpec):
+        if isinstance(spec, RackSpec):
+            head = (f"{spec.name}: rack and pinion, {spec.pinion.teeth}-tooth pinion, {spec.rack_teeth}-tooth rack "
+                    f"({spec.rack_length:.1f} mm), module {spec.system.module:g} mm, {spec.pinion.pitch_radius:.4f} mm per rad")
+            r = None
+        elif isinstance(spec, PlanetarySpec):
             t = spec.teeth
             head = (f"{spec.name}: planetary, sun {t.sun} / planet {t.planet} ×{t.planets} / ring {t.ring}, ratio "
                     f"{t.ratio:.4f}" + (f" (target {spec.target_ratio:g})" if spec.target_ratio else "")
                     + f", module {spec.system.module:g} mm")
         else:
-            head = None
+            head, r = None, spec.ratio
         lines = [head] if head else [f"{spec.name}: ratio {r.numerator}/{r.denominator} = {float(r):.4f}"
                  + (f" (target {spec.target_ratio:g}, {100 * (float(r) / spec.target_ratio - 1):+.3f} %)"
                     if spec.target_ratio else "") + f", module {spec.system.module:g} mm, {len(spec.stages)} stage(s): "
@@ -146,6 +181,16 @@ class GearTrain:
 
     def check_text(self, spec: TrainSpec, result: Result, folder, seconds: float) -> str:
         f = result.figures
+        if isinstance(spec, RackSpec):
+            r = f["rack_mesh"]
+            lines = [f"{spec.name}: {f['samples']} pinion angles over the rack's {spec.travel:g} mm travel",
+                     f"  pinion/rack {r['teeth'][0]}/{r['teeth'][1]}: contact ratio {r['contact_ratio']:.3f}, backlash "
+                     f"{r['backlash_mm']['min']:.3f}–{r['backlash_mm']['max']:.3f} mm (designed "
+                     f"{r['backlash_mm']['designed']:.3f}), rack tips {r['rack_tip_width_mm']:.2f} mm"]
+            lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+            lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
+                         + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
+            return "\n".join(lines)
         lines = [f"{spec.name}: {f['samples']} angles over one turn of the slowest shaft ({f['input_turns']:g} input turns)"]
         for row in f.get("meshes", []):
             lines.append(f"  {'/'.join(row['pair'])} {row['teeth'][0]}/{row['teeth'][1]}: centre distance "
@@ -166,6 +211,12 @@ class GearTrain:
 
     def trace_text(self, spec: TrainSpec, trace: Trace, folder) -> str:
         s = trace.stats
+        if isinstance(spec, RackSpec):
+            lines = [f"{spec.name}: {s['ratio_measured']:.5f} mm of rack per rad (design {s['ratio_design']:.5f}), "
+                     f"{s['samples']} angles over the travel",
+                     f"  transmission error {s['transmission_error_um']['peak_to_peak']:.2f} µm peak to peak at the "
+                     f"rack; backlash {s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm"]
+            return "\n".join(lines + ([f"plots: {folder}/{', '.join(trace.files)}"] if folder else []))
         lines = [f"{spec.name}: ratio measured {s['ratio_measured']:.5f} (design {s['ratio_design']:.5f}), "
                  f"{s['samples']} angles over one output turn",
                  f"  transmission error {s['transmission_error_arcmin']['peak_to_peak']:.2f} arcmin peak to peak at the "
@@ -178,6 +229,16 @@ class GearTrain:
                         common: dict) -> list[tuple[str, str]]:
         from ...export import report as R
 
+        if isinstance(spec, RackSpec):
+            st = trace.stats
+            design = (f"<p>A {spec.pinion.teeth}-tooth pinion (x = {spec.pinion.profile_shift:.3f}) and a "
+                      f"{spec.rack_teeth}-tooth rack, module {spec.system.module:g} mm, travel {spec.travel:g} mm; "
+                      f"the rack moves {spec.pinion.pitch_radius:.4f} mm per radian of the pinion.</p>")
+            check = (f'<p class="{"ok" if result.ok else "fail"}">{result.figures["samples"]} angles over the travel; '
+                     f'measured {st["ratio_measured"]:.5f} mm/rad, transmission error '
+                     f'{st["transmission_error_um"]["peak_to_peak"]:.2f} µm peak to peak, backlash '
+                     f'{st["backlash_mm"]["min"]:.3f}–{st["backlash_mm"]["max"]:.3f} mm.</p>')
+            return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
         if isinstance(spec, PlanetarySpec):
             t, st = spec.teeth, trace.stats
             design = R.table(["", "sun", "planet", "ring"], [["teeth", t.sun, t.planet, t.ring],
@@ -209,6 +270,8 @@ class GearTrain:
         return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
 
     def subtitle(self, spec: TrainSpec) -> str:
+        if isinstance(spec, RackSpec):
+            return f"rack and pinion, {spec.pinion.teeth} teeth, {spec.travel:g} mm travel"
         if isinstance(spec, PlanetarySpec):
             return f"planetary set, {spec.teeth.planets} planets, ratio {spec.ratio:.4f}"
         r = spec.ratio
@@ -234,7 +297,19 @@ def _planetary_summary(spec: PlanetarySpec) -> dict:
     return out
 
 
-def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray) -> bytes:
+def _rack_summary(spec: RackSpec) -> dict:
+    p = spec.pinion
+    return {"name": spec.name, "kind": "gear_train", "arrangement": "rack and pinion",
+            "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
+            "face_width_mm": spec.face_width, "pinion_teeth": p.teeth, "pinion_profile_shift": _r6(p.profile_shift),
+            "rack_teeth": spec.rack_teeth, "rack_length_mm": _r6(spec.rack_length), "travel_mm": spec.travel,
+            "mm_per_rad": _r6(p.pitch_radius), "pitch_line_y_mm": _r6(spec.pitch_line),
+            "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
+            "density_g_cm3": _r6(spec.density * 1000)}
+
+
+def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray, unit: str = "arcmin at the output"
+            ) -> bytes:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -242,10 +317,10 @@ def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarra
 
     fig, ax = plt.subplots(figsize=(9, 4))
     deg = np.degrees(thetas)
-    ax.plot(deg, te, label="transmission error at the output (drive flanks), arcmin")
-    ax.plot(deg, lash, label="backlash at the output, arcmin")
+    ax.plot(deg, te, label=f"transmission error (drive flanks), {unit}")
+    ax.plot(deg, lash, label=f"backlash, {unit}")
     ax.set_xlabel("input angle (°)")
-    ax.set_ylabel("arcmin at the output")
+    ax.set_ylabel(unit)
     ax.set_title(f"{spec.name}: over one turn of the output, from the printed outlines")
     ax.grid(alpha=0.3)
     ax.legend()

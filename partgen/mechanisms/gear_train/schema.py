@@ -85,6 +85,14 @@ class Planetary(Strict):
         return self
 
 
+class Rack(Strict):
+    """A rack and pinion: the pinion on a shaft turning in the base, the rack sliding in its guide."""
+
+    pinion_teeth: Teeth
+    travel_mm: Length = 80.0  # how far the rack moves, end to end, over the checked motion
+    back_mm: Length = 6.0  # the rack's body under its root line
+
+
 class Shafts(Strict):
     diameter_mm: Length = 8.0
     running_clearance_diametral_mm: Literal["printer"] | Annotated[float, Field(ge=0, le=5)] = "printer"
@@ -120,6 +128,7 @@ class GearTrainDesign(Strict):
     gears: TrainGears
     train: Train | None = None
     planetary: Planetary | None = None
+    rack: Rack | None = None
     shafts: Shafts = Shafts()
     frame: Frame = Frame()
     checks: TrainChecks = TrainChecks()
@@ -127,8 +136,10 @@ class GearTrainDesign(Strict):
 
     @model_validator(mode="after")
     def _train_or_planetary(self):
-        if (self.train is None) == (self.planetary is None):
-            raise ValueError("[train] give a train of stages or a planetary set (planetary), one of them")
-        if self.planetary is not None and self.gears.helix_angle_deg:
-            raise ValueError("[gears.helix_angle_deg] a planetary set's gears are spur (helical rings are not made)")
+        if sum(x is not None for x in (self.train, self.planetary, self.rack)) != 1:
+            raise ValueError("[train] give one of: a train of stages (train), a planetary set (planetary), a rack and "
+                             "pinion (rack)")
+        if (self.planetary is not None or self.rack is not None) and self.gears.helix_angle_deg:
+            raise ValueError("[gears.helix_angle_deg] planetary sets and racks are spur here (helical rings and "
+                             "racks are not made)")
         return self
