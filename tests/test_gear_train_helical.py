@@ -12,7 +12,6 @@ import pytest
 import trimesh
 from shapely import contains_xy
 
-from partgen import pipeline
 from partgen.design.gear_train import transverse_system, twist_over
 from partgen.design.gearing import GearSpec, ToothSystem
 from partgen.geometry.gear import helical_body
@@ -84,9 +83,3 @@ def test_the_exact_check_fails_nudged_or_with_the_wrong_hand(pair):
     same_hand = tuple(dataclasses.replace(g, hand=1) for g in spec.gears)
     wrong = dataclasses.replace(spec, gears=same_hand)
     assert exact_mesh_overlap(build_train(wrong), mesh, 3).max() > 1.0
-
-
-def test_herringbone_on_a_desktop_printer():
-    loaded = pipeline.load(CFG, over=pipeline.overrides(printer="prusa_mk4"))
-    result = MECHANISM.check(loaded.spec, MECHANISM.build(loaded.spec), 8)
-    assert result.ok, [f.message for f in result.findings if f.severity == "fail"]

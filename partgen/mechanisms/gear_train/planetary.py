@@ -364,19 +364,23 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
             rings = []
             for i, gm in enumerate(s.angles):
                 pc = (s.centre_distance * math.cos(gm), s.centre_distance * math.sin(gm))
-                window = shapely.Point(pc).buffer(s.planet.tip_radius + 0.5)
-                fixed = shapely.intersection(sun, window)
+                u = (math.cos(gm), math.sin(gm))
+                h = 3.5 * s.system.module  # the teeth in mesh lie within this of a pitch point
+                w1 = box(*(s.sun.pitch_radius * np.array(u) - h), *(s.sun.pitch_radius * np.array(u) + h))
+                rr = s.space.pitch_radius
+                w2 = box(*(rr * np.array(u) - h), *(rr * np.array(u) + h))
+                fixed = shapely.intersection(sun, w1)
                 phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
                 planet = _place(secs["planet"], phi, pc)
-                if key == "drive":
-                    out["overlap_mm2"][k, i] = fixed.intersection(planet).area
+                if key == "drive":  # whole outlines: tip and trochoidal interference anywhere
+                    out["overlap_mm2"][k, i] = sun.intersection(planet).area
                     out["overlap_mm2"][k, N + i] = _place(secs["ring"], s.ring_phase - c, (0.0, 0.0)).intersection(
                         planet).area
-                phi_act = phi + sense * _contact(fixed, planet, pc, sense, reach_p, tol)
-                planet_act = _place(secs["planet"], phi_act, pc)
+                piece = shapely.intersection(planet, w1.buffer(2 * h))
+                phi_act = phi + sense * _contact(fixed, piece, pc, sense, reach_p, tol)
+                planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
                 ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
-                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)),
-                                            window.buffer(2 * s.system.module))
+                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2.buffer(2 * h))
                 rings.append(ring_nom + sense * _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol))
             # the carrier is held by the planet that bears first: the ring's least lag
             out[key][k] = s.ring_phase - (min(rings) if sense > 0 else max(rings))
@@ -438,10 +442,11 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
     res.add(*found)
     found, on_bed = bed_findings(kit.parts, s.printer)
     res.add(*found)
-    # every planet against sun and ring on the printed sections, one pitch of the sun mesh at a time
-    # covers the turn; here the sampled angles over one carrier turn (tip and trochoidal interference)
-    few = thetas[:: max(1, n // 24)]
-    turned = turn_planetary(kit, few, tol=1e-6)
+    # every planet against sun and ring on the printed sections (tip and trochoidal interference): both
+    # meshes of a planet advance one planet tooth while the sun turns 2π / (z_s (1 − 1/i)) about the
+    # carrier, so 8 angles over that span see every phase of every mesh
+    few = np.linspace(0.0, 2 * math.pi / (zs * (1 - 1 / s.ratio)), 8, endpoint=False)
+    turned = turn_planetary(kit, few, tol=1e-5)
     worst = turned["overlap_mm2"].max()
     if worst > 1e-6:
         k, j = np.unravel_index(np.argmax(turned["overlap_mm2"]), turned["overlap_mm2"].shape)
