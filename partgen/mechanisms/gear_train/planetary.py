@@ -278,8 +278,11 @@ def build_planetary(s: PlanetarySpec, progress=None) -> PlanetaryKit:
                 Contact("sun", "frame_bottom", "thrust"),
                 Contact("frame_top", "frame_bottom", "press", (zt, zt + t), s.press / 2)]
     for i in range(len(s.angles)):
+        # the sun/planet meshes are left out of the pairwise sweep, as the planet/ring ones (the ring is
+        # the frame's, met on the track by the thrust contact): their whole sections are checked
+        # against each other at every mesh phase (checks.meshing, turn_planetary)
         contacts += [Contact(f"planet{i}", "carrier", "running", (g + 0.25, g + f), s.running / 2),
-                     Contact(f"planet{i}", "frame_bottom", "thrust")]
+                     Contact(f"planet{i}", "frame_bottom", "thrust"), Contact("sun", f"planet{i}", "mesh")]
     return PlanetaryKit(s, tuple(parts), tuple(contacts))
 
 
