@@ -84,6 +84,11 @@ class GearTrain:
                            "hub_diameter_mm": _r6(2 * sh.hub_radius)} for sh in spec.shafts],
                "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
                "density_g_cm3": _r6(spec.density * 1000)}
+        if spec.helix:
+            out.update(helix_angle_deg=_r6(math.degrees(spec.helix)), herringbone=spec.herringbone,
+                       normal_module_mm=_r6(spec.normal_module), transverse_module_mm=_r6(spec.system.module),
+                       profile_shift_plane="transverse (x_t = x_n cos β)",
+                       hands=[{"gear": g.name, "hand": "right" if g.hand > 0 else "left"} for g in spec.gears])
         if spec.target_ratio is not None:
             out["target_ratio"] = spec.target_ratio
             out["ratio_error"] = _r6(float(r) / spec.target_ratio - 1)
