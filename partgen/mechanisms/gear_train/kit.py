@@ -34,7 +34,7 @@ from ...errors import ConfigError, DesignError
 from ...geometry.gear import gear_body, helical_body
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, shaft as shaft_solid
-from ...geometry.solid import extrude, prisms, slab, union
+from ...geometry.solid import prisms, slab, union
 
 __all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train"]
 
