@@ -201,7 +201,8 @@ def centre_distance_range(z1: int, z2: int, m: float, alpha: float, x_min: float
 
 def _cd_pair(target: StageTarget, m: float, alpha: float, lim: TeethLimits, x_range, key: str) -> tuple[int, int]:
     """Teeth for a stage that gives a centre distance and a ratio: the pair nearest the ratio whose
-    reference centre distance m(z1 + z2)/2 the allowed shifts can move onto the target."""
+    reference centre distance m(z1 + z2)/2 the allowed shifts can move onto the target, preferring
+    a pair the shifts spread apart (x1 + x2 ≥ 0) and then the least shift."""
     a = target.centre_distance
     cands = []
     for err, size, z1, z2 in _pairs_for_ratio(target.ratio, lim):
@@ -209,14 +210,15 @@ def _cd_pair(target: StageTarget, m: float, alpha: float, lim: TeethLimits, x_ra
             continue
         lo, hi = centre_distance_range(z1, z2, m, alpha, *x_range)
         if lo - 1e-9 <= a <= hi + 1e-9:
-            cands.append((round(err, 12), abs(m * (z1 + z2) / 2 - a), z1, z2))
+            a0 = m * (z1 + z2) / 2  # a pair spread apart (x1 + x2 ≥ 0) before one pulled in: a negative sum
+            cands.append((round(err, 12), a0 > a + 1e-9, abs(a0 - a), z1, z2))  # thins the teeth and lowers α_w
     if not cands:
         zs = 2 * a / m
         raise DesignError(f"no whole teeth near the ratio {target.ratio:g} reach the centre distance {a:g} mm with "
                           f"shifts in [{x_range[0]:g}, {x_range[1]:g}] (module {m:g} mm wants z1 + z2 near "
                           f"{zs:.1f}): change the ratio, the centre distance or the module", key)
     cands.sort()
-    return cands[0][2], cands[0][3]
+    return cands[0][3], cands[0][4]
 
 
 def solve_train(targets: list[StageTarget], lim: TeethLimits, m: float, alpha: float, overall: float | None = None,

@@ -13,7 +13,7 @@ import numpy as np
 
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
-from ...core.findings import Result
+from ...core.findings import Finding, Result
 from ...core.protocol import Motion, Trace
 from ...errors import DesignError
 from ...geometry.measure import oversize
@@ -60,8 +60,30 @@ class GearTrain:
             raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
                               "gears.module_mm")
 
-    def findings(self, spec: TrainSpec):
-        return []
+    def findings(self, spec: TrainSpec) -> list[Finding]:
+        """What `build` warns about (the rules `check` fails on) and notes (undercut gears)."""
+        from ...design import rules
+        from ...design.mechanism import gear_rules
+
+        gr = gear_rules(spec)
+        out = []
+        if isinstance(spec, TrainSpec):
+            for k, m in enumerate(spec.meshes):
+                a, b = spec.gear(m.driver), spec.gear(m.driven)
+                for x in rules.mesh_breaches(a.spec, b.spec, m.centre_distance, gr, (a.name, b.name)):
+                    out.append(Finding("design", "warn", x.message, (), key=f"train.stages[{k}]", rule=x.rule))
+            gears = [(g.name, g.spec) for g in spec.gears]
+        elif isinstance(spec, PlanetarySpec):
+            gears = [("sun", spec.sun), ("planet", spec.planet)]
+        else:
+            gears = [("pinion", spec.pinion)]
+        for name, g in gears:
+            for x in rules.gear_breaches(g, gr, name):
+                out.append(Finding("design", "warn", x.message, (), key="gears.module_mm", rule=x.rule))
+            if g.undercut:
+                out.append(Finding("design", "info", f"{name} ({g.teeth} teeth, x = {g.profile_shift:.3f}) is undercut",
+                                   (), key="gears.profile_shift"))
+        return out
 
     def design_summary(self, spec: TrainSpec, kit: TrainKit) -> dict:
         if isinstance(spec, PlanetarySpec):
