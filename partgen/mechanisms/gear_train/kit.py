@@ -305,10 +305,6 @@ class TrainKit(ParamsKit):
             out[f"shaft{sh.index}"] = pose_z(sh.centre[0], sh.centre[1], 0.0, a if sh.bore == "d_flat" else 0.0)
         return out
 
-    def gear_pose(self, gear: TrainGear, theta: float) -> np.ndarray:
-        """The pose of one gear (its part's, raised to its layer's mid-height is not applied: z = 0)."""
-        return self.poses(theta)[f"gears{gear.shaft}"]
-
 
 def _spacer_centres(s: TrainSpec) -> list[tuple[float, float]]:
     """Four spacers at the corners of the box around every tip circle, each outside every tip circle
