@@ -39,11 +39,17 @@ def to_shapely(cs: m3d.CrossSection) -> Polygon | MultiPolygon:
     signed = [0.5 * np.sum(r[:, 0] * np.roll(r[:, 1], -1) - np.roll(r[:, 0], -1) * r[:, 1]) for r in rings]
     outers = [Polygon(r) for r, a in zip(rings, signed) if a > 0]
     holes = [Polygon(r) for r, a in zip(rings, signed) if a <= 0]
-    polys = []
-    for o in sorted(outers, key=lambda p: -p.area):
-        mine = [h for h in holes if o.contains(h.representative_point())]
-        holes = [h for h in holes if h not in mine]
-        polys.append(Polygon(o.exterior.coords, [h.exterior.coords for h in mine]))
+    # a hole belongs to the smallest outer contour round it (an island inside a hole inside an island:
+    # a ring gear round a track round a boss)
+    by_area = sorted(outers, key=lambda p: p.area)
+    mine: dict[int, list] = {id(o): [] for o in outers}
+    for h in holes:
+        pt = h.representative_point()
+        parent = next((o for o in by_area if o.area > h.area and o.contains(pt)), None)
+        if parent is not None:
+            mine[id(parent)].append(h)
+    polys = [Polygon(o.exterior.coords, [h.exterior.coords for h in mine[id(o)]])
+             for o in sorted(outers, key=lambda p: -p.area)]
     return polys[0] if len(polys) == 1 else MultiPolygon(polys)
 
 

@@ -19,6 +19,7 @@ KINDS = (
     "wrist",
     "bennett_butterfly",
     "gear_pair",
+    "gear_train",
 )
 
 REGISTRY: dict[str, Mechanism] = {kind: import_module(f"{__name__}.{kind}").MECHANISM for kind in KINDS}

@@ -1,0 +1,5 @@
+"""gear_train (see mechanism.py)."""
+
+from .mechanism import MECHANISM
+
+__all__ = ["MECHANISM"]

@@ -1,0 +1,361 @@
+"""A gear train in a frame (``kind: gear_train``) behind the Mechanism protocol: designed from a table
+of stages (teeth, ratios, centre distances, an overall ratio), built, checked over one turn of the
+slowest shaft, traced on its printed outlines (output against input: transmission error in
+arcminutes, the ratio measured, the backlash at the output) and reported."""
+
+from __future__ import annotations
+
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ...config.loader import LoadedDesign
+from ...config.yamlio import dump_yaml
+from ...core.findings import Finding, Result
+from ...core.protocol import Motion, Trace
+from ...errors import DesignError
+from ...geometry.measure import oversize
+from .checks import check_train, sample_thetas
+from .kit import TrainKit, TrainSpec, build_train, resolve_train
+from .motion import turn_train
+from .planetary import PlanetaryKit, PlanetarySpec, build_planetary, check_planetary, resolve_planetary, turn_planetary
+from .rack import RackKit, RackSpec, build_rack, check_rack, resolve_rack, turn_rack
+from .schema import GearTrainDesign
+
+__all__ = ["GearTrain", "MECHANISM"]
+
+ARCMIN = 60 * 180 / math.pi  # arcminutes per radian
+
+
+def _r6(x) -> float:
+    return float(round(float(x), 6))
+
+
+class GearTrain:
+    kind = "gear_train"
+    title = "gear train"
+    schema = GearTrainDesign
+    motion = Motion("input angle", "rad", (0.0, 2 * math.pi))
+    csv_header = "input_rad,output_rad,transmission_error_arcmin,backlash_arcmin\n"
+    trace_needs_kit = True
+    role_colours = {"gear": "#4c78a8", "frame": "#8c8c8c", "axle": "#e45756"}
+
+    def resolve(self, raw: LoadedDesign) -> TrainSpec | PlanetarySpec:
+        if raw.design.rack is not None:
+            return resolve_rack(raw)
+        return resolve_planetary(raw) if raw.design.planetary is not None else resolve_train(raw)
+
+    def build(self, spec: TrainSpec | PlanetarySpec, progress=None) -> TrainKit | PlanetaryKit:
+        try:
+            if isinstance(spec, RackSpec):
+                return build_rack(spec, progress)
+            return build_planetary(spec, progress) if isinstance(spec, PlanetarySpec) else build_train(spec, progress)
+        except ValueError as e:
+            raise DesignError(str(e), "shafts.diameter_mm") from None
+
+    def refuse(self, spec: TrainSpec, kit: TrainKit) -> None:
+        for part, ext in oversize(kit.parts, spec.printer.envelope):
+            raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                              "gears.module_mm")
+
+    def findings(self, spec: TrainSpec) -> list[Finding]:
+        """What `build` warns about (the rules `check` fails on) and notes (undercut gears)."""
+        from ...design import rules
+        from ...design.mechanism import gear_rules
+
+        gr = gear_rules(spec)
+        out = []
+        if isinstance(spec, TrainSpec):
+            for k, m in enumerate(spec.meshes):
+                a, b = spec.gear(m.driver), spec.gear(m.driven)
+                for x in rules.mesh_breaches(a.spec, b.spec, m.centre_distance, gr, (a.name, b.name)):
+                    out.append(Finding("design", "warn", x.message, (), key=f"train.stages[{k}]", rule=x.rule))
+            gears = [(g.name, g.spec) for g in spec.gears]
+        elif isinstance(spec, PlanetarySpec):
+            gears = [("sun", spec.sun), ("planet", spec.planet)]
+        else:
+            gears = [("pinion", spec.pinion)]
+        for name, g in gears:
+            for x in rules.gear_breaches(g, gr, name):
+                out.append(Finding("design", "warn", x.message, (), key="gears.module_mm", rule=x.rule))
+            if g.undercut:
+                out.append(Finding("design", "info", f"{name} ({g.teeth} teeth, x = {g.profile_shift:.3f}) is undercut",
+                                   (), key="gears.profile_shift"))
+        return out
+
+    def design_summary(self, spec: TrainSpec, kit: TrainKit) -> dict:
+        if isinstance(spec, PlanetarySpec):
+            return _planetary_summary(spec)
+        if isinstance(spec, RackSpec):
+            return _rack_summary(spec)
+        r = spec.ratio
+        out = {"name": spec.name, "kind": self.kind, "module_mm": spec.system.module,
+               "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)), "face_width_mm": spec.face_width,
+               "ratio": f"{r.numerator}/{r.denominator}", "ratio_value": _r6(float(r)),
+               "output_sense": "same as the input" if spec.shafts[-1].speed > 0 else "opposite to the input",
+               "stages": [{"teeth": [st.driver, st.driven], "ratio": _r6(float(st.ratio)), "idler": st.idler,
+                           "profile_shift": [_r6(spec.gear(m.driver).spec.profile_shift),
+                                             _r6(spec.gear(m.driven).spec.profile_shift)],
+                           "centre_distance_mm": _r6(m.centre_distance), "direction_deg": _r6(math.degrees(m.direction)),
+                           "gears": [m.driver, m.driven]}
+                          for st, m in zip(spec.stages, spec.meshes)],
+               "shafts": [{"centre_mm": [_r6(c) for c in sh.centre], "bore": sh.bore,
+                           "speed": f"{sh.speed.numerator}/{sh.speed.denominator}", "phase_deg": _r6(math.degrees(sh.phase)),
+                           "hub_diameter_mm": _r6(2 * sh.hub_radius)} for sh in spec.shafts],
+               "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
+               "density_g_cm3": _r6(spec.density * 1000)}
+        if spec.helix:
+            out.update(helix_angle_deg=_r6(math.degrees(spec.helix)), herringbone=spec.herringbone,
+                       normal_module_mm=_r6(spec.normal_module), transverse_module_mm=_r6(spec.system.module),
+                       profile_shift_plane="transverse (x_t = x_n cos β)",
+                       hands=[{"gear": g.name, "hand": "right" if g.hand > 0 else "left"} for g in spec.gears])
+        if spec.target_ratio is not None:
+            out["target_ratio"] = spec.target_ratio
+            out["ratio_error"] = _r6(float(r) / spec.target_ratio - 1)
+        return out
+
+    def kit_files(self, spec: TrainSpec, kit: TrainKit, raw: LoadedDesign) -> dict[str, bytes]:
+        data = raw.document()
+        data["printer"] = "printer.yaml"
+        return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
+
+    def plate_margin(self, spec: TrainSpec) -> float:
+        return spec.checks.plate_margin
+
+    def check(self, spec: TrainSpec, kit: TrainKit, samples: int | None = None, progress=None) -> Result:
+        if isinstance(spec, PlanetarySpec):
+            return check_planetary(kit, samples, progress)
+        if isinstance(spec, RackSpec):
+            return check_rack(kit, samples, progress)
+        return check_train(kit, samples, progress)
+
+    def trace(self, spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
+        """Output angle against input angle over one turn of the output, from the printed outlines (a
+        rack's travel against the pinion's angle over its travel)."""
+        if isinstance(spec, RackSpec):
+            return self._trace_rack(spec, kit, samples, out)
+        if isinstance(spec, PlanetarySpec):
+            thetas = np.linspace(0.0, spec.output_turn, samples or 90, endpoint=False)
+            turned = turn_planetary(kit, thetas)
+            drive, nominal, coast = turned["drive"], turned["nominal"], turned["coast"]
+        else:
+            thetas = sample_thetas(spec, samples or 90)
+            turned = turn_train(kit, thetas)
+            o = len(spec.shafts) - 1
+            drive, nominal, coast = turned["drive"][:, o], turned["nominal"][:, o], turned["coast"][:, o]
+        te = (drive - nominal) * ARCMIN
+        lash = np.abs(coast - drive) * ARCMIN
+        slope = np.polyfit(thetas, drive, 1)[0]
+        stats = {"kind": self.kind, "samples": len(thetas), "ratio_design": float(spec.ratio),
+                 "output": "carrier" if isinstance(spec, PlanetarySpec) else f"shaft {len(spec.shafts) - 1}",
+                 "ratio_measured": float(1.0 / abs(slope)),
+                 "ratio_measured_error": float((1.0 / abs(slope)) / float(spec.ratio) - 1),
+                 "transmission_error_arcmin": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
+                 "backlash_arcmin": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
+                 "max_overlap_mm2": float(turned["overlap_mm2"].max())}
+        files = []
+        if out is not None:
+            (out / "transmission.png").write_bytes(_figure(spec, thetas, te, lash))
+            files = ["transmission.png"]
+        return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_arcmin", "backlash_arcmin"),
+                     data=np.column_stack([thetas, drive, te, lash]))
+
+    def _trace_rack(self, spec: RackSpec, kit: RackKit, samples: int | None, out: Path | None) -> Trace:
+        thetas = np.linspace(*spec.thetas_range, samples or 90)
+        turned = turn_rack(kit, thetas)
+        te = (turned["drive"] - turned["nominal"]) * 1000  # µm
+        lash = turned["coast"] - turned["drive"]
+        slope = np.polyfit(thetas, turned["drive"], 1)[0]
+        stats = {"kind": self.kind, "samples": len(thetas), "output": "rack",
+                 "ratio_design": spec.pinion.pitch_radius, "ratio_measured": float(slope),
+                 "ratio_unit": "mm of rack per rad of pinion",
+                 "ratio_measured_error": float(slope / spec.pinion.pitch_radius - 1),
+                 "transmission_error_um": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
+                 "backlash_mm": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
+                 "max_overlap_mm2": float(turned["overlap_mm2"].max())}
+        files = []
+        if out is not None:
+            (out / "transmission.png").write_bytes(_figure(spec, thetas, te, lash * 1000, "µm at the rack"))
+            files = ["transmission.png"]
+        return Trace(stats, files, columns=("input_rad", "output_mm", "transmission_error_um", "backlash_mm"),
+                     data=np.column_stack([thetas, turned["drive"], te, lash]))
+
+    def csv(self, trace: Trace) -> str:
+        return self.csv_header + "".join(f"{a:.9f},{b:.9f},{c:.6f},{d:.6f}\n" for a, b, c, d in trace.data)
+
+    def bill_text(self, spec: TrainSpec, man: dict, dest, seconds: float) -> str:
+        if isinstance(spec, RackSpec):
+            head = (f"{spec.name}: rack and pinion, {spec.pinion.teeth}-tooth pinion, {spec.rack_teeth}-tooth rack "
+                    f"({spec.rack_length:.1f} mm), module {spec.system.module:g} mm, {spec.pinion.pitch_radius:.4f} mm per rad")
+            r = None
+        elif isinstance(spec, PlanetarySpec):
+            t = spec.teeth
+            head = (f"{spec.name}: planetary, sun {t.sun} / planet {t.planet} ×{t.planets} / ring {t.ring}, ratio "
+                    f"{t.ratio:.4f}" + (f" (target {spec.target_ratio:g})" if spec.target_ratio else "")
+                    + f", module {spec.system.module:g} mm")
+        else:
+            head, r = None, spec.ratio
+        lines = [head] if head else [f"{spec.name}: ratio {r.numerator}/{r.denominator} = {float(r):.4f}"
+                 + (f" (target {spec.target_ratio:g}, {100 * (float(r) / spec.target_ratio - 1):+.3f} %)"
+                    if spec.target_ratio else "") + f", module {spec.system.module:g} mm, {len(spec.stages)} stage(s): "
+                 + ", ".join(f"{st.driver}/{st.driven}" for st in spec.stages)]
+        lines += [f"{p['name']:<14}{p['role']:<7}{p['count']:>3}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 "
+                  f"{p['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm" for p in man["parts"]]
+        lines.append(f"wrote {dest}/ in {seconds:.2f} s")
+        return "\n".join(lines)
+
+    def check_text(self, spec: TrainSpec, result: Result, folder, seconds: float) -> str:
+        f = result.figures
+        if isinstance(spec, RackSpec):
+            r = f["rack_mesh"]
+            lines = [f"{spec.name}: {f['samples']} pinion angles over the rack's {spec.travel:g} mm travel",
+                     f"  pinion/rack {r['teeth'][0]}/{r['teeth'][1]}: contact ratio {r['contact_ratio']:.3f}, backlash "
+                     f"{r['backlash_mm']['min']:.3f}–{r['backlash_mm']['max']:.3f} mm (designed "
+                     f"{r['backlash_mm']['designed']:.3f}), rack tips {r['rack_tip_width_mm']:.2f} mm"]
+            lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+            lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
+                         + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
+            return "\n".join(lines)
+        lines = [f"{spec.name}: {f['samples']} angles over one turn of the slowest shaft ({f['input_turns']:g} input turns)"]
+        for row in f.get("meshes", []):
+            lines.append(f"  {'/'.join(row['pair'])} {row['teeth'][0]}/{row['teeth'][1]}: centre distance "
+                         f"{row['centre_distance_mm']:.3f} mm, backlash {row['backlash_mm']:.3f} mm (measured "
+                         f"{row['measured_backlash_mm']:.3f}), contact ratio {row['contact_ratio']:.3f}")
+        im = f.get("internal_mesh")
+        if im:
+            lines.append(f"  planet/ring {im['teeth'][0]}/{im['teeth'][1]} (internal): contact ratio {im['contact_ratio']:.3f}, "
+                         f"tip-root {min(im['tip_root_mm'].values()):.3f} mm, planets' tips {im['planet_tip_gap_mm']:.2f} mm "
+                         f"apart, assembly {im['assembly']}")
+        b = f.get("output_backlash_arcmin", {})
+        if b:
+            lines.append(f"  backlash at the output {b['min']:.1f}–{b['max']:.1f} arcmin (printed outlines)")
+        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
+                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
+        return "\n".join(lines)
+
+    def trace_text(self, spec: TrainSpec, trace: Trace, folder) -> str:
+        s = trace.stats
+        if isinstance(spec, RackSpec):
+            lines = [f"{spec.name}: {s['ratio_measured']:.5f} mm of rack per rad (design {s['ratio_design']:.5f}), "
+                     f"{s['samples']} angles over the travel",
+                     f"  transmission error {s['transmission_error_um']['peak_to_peak']:.2f} µm peak to peak at the "
+                     f"rack; backlash {s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm"]
+            return "\n".join(lines + ([f"plots: {folder}/{', '.join(trace.files)}"] if folder else []))
+        lines = [f"{spec.name}: ratio measured {s['ratio_measured']:.5f} (design {s['ratio_design']:.5f}), "
+                 f"{s['samples']} angles over one output turn",
+                 f"  transmission error {s['transmission_error_arcmin']['peak_to_peak']:.2f} arcmin peak to peak at the "
+                 f"output; backlash {s['backlash_arcmin']['min']:.1f}–{s['backlash_arcmin']['max']:.1f} arcmin"]
+        if folder:
+            lines.append(f"plots: {folder}/{', '.join(trace.files)}")
+        return "\n".join(lines)
+
+    def report_sections(self, spec: TrainSpec, kit: TrainKit, result: Result, trace: Trace, files: dict,
+                        common: dict) -> list[tuple[str, str]]:
+        from ...export import report as R
+
+        if isinstance(spec, RackSpec):
+            st = trace.stats
+            design = (f"<p>A {spec.pinion.teeth}-tooth pinion (x = {spec.pinion.profile_shift:.3f}) and a "
+                      f"{spec.rack_teeth}-tooth rack, module {spec.system.module:g} mm, travel {spec.travel:g} mm; "
+                      f"the rack moves {spec.pinion.pitch_radius:.4f} mm per radian of the pinion.</p>")
+            check = (f'<p class="{"ok" if result.ok else "fail"}">{result.figures["samples"]} angles over the travel; '
+                     f'measured {st["ratio_measured"]:.5f} mm/rad, transmission error '
+                     f'{st["transmission_error_um"]["peak_to_peak"]:.2f} µm peak to peak, backlash '
+                     f'{st["backlash_mm"]["min"]:.3f}–{st["backlash_mm"]["max"]:.3f} mm.</p>')
+            return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+        if isinstance(spec, PlanetarySpec):
+            t, st = spec.teeth, trace.stats
+            design = R.table(["", "sun", "planet", "ring"], [["teeth", t.sun, t.planet, t.ring],
+                                                             ["count", 1, t.planets, 1]]) + (
+                f"<p>Ring fixed, sun input, carrier output: ratio 1 + {t.ring}/{t.sun} = {t.ratio:.5f}; "
+                f"(z_sun + z_ring)/N = {(t.sun + t.ring) / t.planets:g}; planets at "
+                f"{', '.join(f'{math.degrees(a):.2f}°' for a in spec.angles)}; module {spec.system.module:g} mm.</p>")
+            check = (f'<p class="{"ok" if result.ok else "fail"}">{result.figures["samples"]} angles over one carrier '
+                     f'turn; measured ratio {st["ratio_measured"]:.5f}, transmission error '
+                     f'{st["transmission_error_arcmin"]["peak_to_peak"]:.2f} arcmin peak to peak, backlash at the carrier '
+                     f'{st["backlash_arcmin"]["min"]:.1f}–{st["backlash_arcmin"]["max"]:.1f} arcmin.</p>')
+            return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+
+        rows = [[k, f"{st.driver}/{st.driven}", round(float(st.ratio), 4),
+                 f"{spec.gear(m.driver).spec.profile_shift:.3f}/{spec.gear(m.driven).spec.profile_shift:.3f}",
+                 round(m.centre_distance, 3), "idler" if st.idler else "compound" if k else "input"]
+                for k, (st, m) in enumerate(zip(spec.stages, spec.meshes))]
+        r = spec.ratio
+        design = R.table(["stage", "teeth", "ratio", "profile shift", "centre distance mm", "driven from"], rows) + (
+            f"<p>Overall ratio {r.numerator}/{r.denominator} = {float(r):.5f}"
+            + (f" (target {spec.target_ratio:g})" if spec.target_ratio else "")
+            + f"; module {spec.system.module:g} mm, pressure angle {math.degrees(spec.system.pressure_angle):g}°, "
+            f"face width {spec.face_width:g} mm, shafts Ø{2 * spec.shaft_radius:g} mm.</p>")
+        t = trace.stats
+        check = (f'<p class="{"ok" if result.ok else "fail"}">{result.figures["samples"]} angles over one turn of the '
+                 f'slowest shaft; measured ratio {t["ratio_measured"]:.5f}, transmission error '
+                 f'{t["transmission_error_arcmin"]["peak_to_peak"]:.2f} arcmin peak to peak, backlash at the output '
+                 f'{t["backlash_arcmin"]["min"]:.1f}–{t["backlash_arcmin"]["max"]:.1f} arcmin.</p>')
+        return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+
+    def subtitle(self, spec: TrainSpec) -> str:
+        if isinstance(spec, RackSpec):
+            return f"rack and pinion, {spec.pinion.teeth} teeth, {spec.travel:g} mm travel"
+        if isinstance(spec, PlanetarySpec):
+            return f"planetary set, {spec.teeth.planets} planets, ratio {spec.ratio:.4f}"
+        r = spec.ratio
+        return f"{len(spec.stages)}-stage gear train, ratio {r.numerator}/{r.denominator}"
+
+
+def _planetary_summary(spec: PlanetarySpec) -> dict:
+    t = spec.teeth
+    out = {"name": spec.name, "kind": "gear_train", "arrangement": "planetary: ring fixed, sun input, carrier output",
+           "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
+           "face_width_mm": spec.face_width, "teeth": {"sun": t.sun, "planet": t.planet, "ring": t.ring},
+           "planets": t.planets, "ratio": f"1 + {t.ring}/{t.sun}", "ratio_value": _r6(t.ratio),
+           "assembly": f"({t.sun} + {t.ring})/{t.planets} = {(t.sun + t.ring) / t.planets:g}",
+           "planet_angles_deg": [_r6(math.degrees(a)) for a in spec.angles],
+           "planet_phases_deg": [_r6(math.degrees(a)) for a in spec.planet_phases],
+           "ring_phase_deg": _r6(math.degrees(spec.ring_phase)), "centre_distance_mm": _r6(spec.centre_distance),
+           "ring_tip_diameter_mm": _r6(2 * (spec.space.root_radius)), "ring_root_diameter_mm": _r6(2 * spec.space.tip_radius),
+           "shaft_diameter_mm": 2 * spec.shaft_radius, "pin_diameter_mm": 2 * spec.pin_radius,
+           "printer": spec.printer.name, "material": spec.material, "density_g_cm3": _r6(spec.density * 1000)}
+    if spec.target_ratio is not None:
+        out["target_ratio"] = spec.target_ratio
+        out["ratio_error"] = _r6(t.ratio / spec.target_ratio - 1)
+    return out
+
+
+def _rack_summary(spec: RackSpec) -> dict:
+    p = spec.pinion
+    return {"name": spec.name, "kind": "gear_train", "arrangement": "rack and pinion",
+            "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
+            "face_width_mm": spec.face_width, "pinion_teeth": p.teeth, "pinion_profile_shift": _r6(p.profile_shift),
+            "rack_teeth": spec.rack_teeth, "rack_length_mm": _r6(spec.rack_length), "travel_mm": spec.travel,
+            "mm_per_rad": _r6(p.pitch_radius), "pitch_line_y_mm": _r6(spec.pitch_line),
+            "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
+            "density_g_cm3": _r6(spec.density * 1000)}
+
+
+def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray, unit: str = "arcmin at the output"
+            ) -> bytes:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    deg = np.degrees(thetas)
+    ax.plot(deg, te, label=f"transmission error (drive flanks), {unit}")
+    ax.plot(deg, lash, label=f"backlash, {unit}")
+    ax.set_xlabel("input angle (°)")
+    ax.set_ylabel(unit)
+    ax.set_title(f"{spec.name}: over one turn of the output, from the printed outlines")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    buf = io.BytesIO()
+    fig.tight_layout()
+    fig.savefig(buf, format="png", dpi=110)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+MECHANISM = GearTrain()
