@@ -1,14 +1,16 @@
 """The gear chain's kit parameters (mm, rad, g/mm³): what its resolver makes of the YAML and its kit,
-checks and design math read (``design.mechanism.ChainParams`` states what the design math needs)."""
+checks and design math read (``design.mechanism.ChainParams`` states what the design math needs;
+``checks.settings.CheckSettings`` what the shared checks hold it to)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ...checks.settings import CheckSettings
 from ...core.printer import PrinterLimits
 from ...design.gearing import ToothSystem
 
-__all__ = ["Joints", "CheckSettings", "KitParams"]
+__all__ = ["Joints", "KitParams"]
 
 
 @dataclass(frozen=True)
@@ -19,18 +21,6 @@ class Joints:
     running_clearance: float
     press_clearance: float
     axial_gap: float
-
-
-@dataclass(frozen=True)
-class CheckSettings:
-    """What `partgen check` holds a kit to (mm, mm³)."""
-
-    samples: int = 360
-    interference_tolerance: float = 0.001
-    min_clearance: float = 0.3
-    min_contact_ratio: float = 1.2
-    min_tip_width_roads: float = 3.0
-    plate_margin: float = 5.0
 
 
 @dataclass(frozen=True)

@@ -19,7 +19,8 @@ from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_fit, printer_limits
-from .params import CheckSettings, Joints, KitParams
+from ...checks.settings import CheckSettings
+from .params import Joints, KitParams
 
 __all__ = ["resolve", "resolve_spec", "ChainSpec", "load"]
 

@@ -28,7 +28,7 @@ from ...core.transforms import pose_z
 from ...design.gear_train import (StageTarget, StageTeeth, TeethLimits, mesh_phase, shaft_speeds, solve_train,
                                   train_ratio, transverse_system, twist_over)
 from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from ...design.mechanism import CheckSettings
+from ...checks.settings import CheckSettings
 from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError, DesignError
 from ...geometry.gear import gear_body, helical_body

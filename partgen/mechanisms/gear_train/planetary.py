@@ -33,7 +33,8 @@ from ...core.transforms import pose_z
 from ...design import rules
 from ...design.gear_train import mesh_phase
 from ...design.gearing import GearSpec, ToothSystem, centre_distance
-from ...design.mechanism import CheckSettings, gear_rules
+from ...checks.settings import CheckSettings
+from ...design.mechanism import gear_rules
 from ...design.planetary import (MIN_TOOTH_DIFFERENCE, PlanetaryTeeth, assembly_whole, internal_centre_distance,
                                  internal_contact_ratio, planet_angles, planet_clearance, planetary_teeth,
                                  ring_contact_on_pinion, ring_tip_radius)

@@ -30,7 +30,8 @@ from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design import rules
 from ...design.gearing import GearSpec, ToothSystem, make_gear
-from ...design.mechanism import CheckSettings, gear_rules
+from ...checks.settings import CheckSettings
+from ...design.mechanism import gear_rules
 from ...design.rack import rack_contact_ratio, rack_outline, rack_tip_width
 from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError

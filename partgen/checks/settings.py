@@ -1,0 +1,20 @@
+"""What the shared checks (motion sweep, meshing, fits, printability) hold a kit to: a kit whose
+mechanism uses them carries these as ``kit.params.checks``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["CheckSettings"]
+
+
+@dataclass(frozen=True)
+class CheckSettings:
+    """What `partgen check` holds a kit to (mm, mm³)."""
+
+    samples: int = 360
+    interference_tolerance: float = 0.001
+    min_clearance: float = 0.3
+    min_contact_ratio: float = 1.2
+    min_tip_width_roads: float = 3.0
+    plate_margin: float = 5.0
