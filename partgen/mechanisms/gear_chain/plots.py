@@ -22,9 +22,14 @@ ROLE_COLOURS = {"gear": "#4c78a8", "link": "#f58518", "base": "#8c8c8c", "leg": 
                 "crank": "#e45756", "pen_holder": "#b279a2"}
 
 
-def _posed(kit: Kit, theta: float):
+def _posed(kit: Kit, theta: float, keep=lambda lo, hi: True):
+    """(part, its mesh placed at θ) for every part whose placed bounding box passes ``keep(lo, hi)``."""
     poses = kit.poses(theta)
     for p in kit.parts:
+        box = np.asarray(p.solid.bounding_box()).reshape(2, 3)
+        corners = np.array([[x, y, z, 1.0] for x in box[:, 0] for y in box[:, 1] for z in box[:, 2]]) @ poses[p.name].T
+        if not keep(corners[:, :3].min(axis=0), corners[:, :3].max(axis=0)):
+            continue
         v, f = mesh_arrays(p.solid)
         m = trimesh.Trimesh(v, f, process=False)
         m.apply_transform(poses[p.name])
@@ -53,7 +58,8 @@ def stack_section(kit: Kit, path, title: str | None = None) -> None:
     widths = [w[1] - w[0] for w in windows]
     fig, axes = plt.subplots(1, 2, figsize=(14, 6.2), gridspec_kw={"width_ratios": widths})
     sections = []
-    for part, mesh in _posed(straight, 0.0):
+    cut = lambda lo, hi: lo[1] <= 0.0 <= hi[1] and any(lo[0] <= x1 and hi[0] >= x0 for x0, x1, _ in windows)  # noqa: E731
+    for part, mesh in _posed(straight, 0.0, cut):
         sec = mesh.section(plane_origin=[0, 0, 0], plane_normal=[0, 1, 0])
         if sec is not None:
             sections += [(part, np.asarray(r)[:, [0, 2]]) for r in sec.discrete]

@@ -101,7 +101,7 @@ def tradeoff_axes(ax, d) -> None:
     ax.legend(fontsize=8)
 
 
-def trace_animation(mech: Mechanism, gif, frames: int = 90, fps: int = 15) -> None:
+def trace_animation(mech: Mechanism, gif, frames: int = 60, fps: int = 10) -> None:
     """The chain (as built) turning through one cycle, the pen leaving its path behind."""
     theta, paths, built, pen = _curves(mech, 2000)
     fig, ax = plt.subplots(figsize=(5.5, 5.5), dpi=80)
