@@ -52,12 +52,9 @@ def render(meshes: list[tuple[np.ndarray, np.ndarray, str]], size_px: tuple[int,
     tri = np.concatenate(polys) if polys else np.zeros((0, 3, 3))
     sh = np.concatenate(shades) if shades else np.zeros((0, 4))
     order = np.argsort(sh[:, 3], kind="stable")  # far first
-    dpi = 100
-    fig = Figure(figsize=(size_px[0] / dpi, size_px[1] / dpi), dpi=dpi)
-    FigureCanvasAgg(fig)
-    ax = fig.add_axes([0, 0, 1, 0.92 if title else 1])
+    fig, ax = _canvas(tuple(size_px), title)
     ax.add_collection(PolyCollection(tri[order][:, :, :2], facecolors=sh[order, :3], edgecolors="none",
-                                     linewidths=0, antialiased=False))
+                                     linewidths=0, antialiased=False), autolim=False)  # the limits are set below
     if len(tri):
         lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0), tri[:, :, :2].reshape(-1, 2).max(axis=0)
         pad = 0.04 * max(hi - lo)
@@ -68,5 +65,25 @@ def render(meshes: list[tuple[np.ndarray, np.ndarray, str]], size_px: tuple[int,
     if title:
         fig.suptitle(title, fontsize=9)
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi)
+    fig.savefig(buf, format="png", dpi=DPI)
     return buf.getvalue()
+
+
+DPI = 100
+_CANVASES: dict = {}  # size -> (figure, axes) of the untitled pictures: made once, cleared for each
+
+
+def _canvas(size_px: tuple[int, int], title: str):
+    """A figure of ``size_px`` with one bare axes filling it (below a title when there is one)."""
+    def make():
+        fig = Figure(figsize=(size_px[0] / DPI, size_px[1] / DPI), dpi=DPI)
+        FigureCanvasAgg(fig)
+        return fig, fig.add_axes([0, 0, 1, 0.92 if title else 1])
+    if title:
+        return make()
+    if size_px not in _CANVASES:
+        _CANVASES[size_px] = make()
+    fig, ax = _CANVASES[size_px]
+    for c in list(ax.collections):
+        c.remove()
+    return fig, ax
