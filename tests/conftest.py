@@ -64,26 +64,36 @@ def prime_kit_cache():
     return prime
 
 
-# Test files (or single tests) that share an expensive kit, and so one worker: with
-# ``pytest -n auto --dist loadgroup`` every test runs in its file's group (like ``--dist loadfile``)
-# except these, which join the named group and reuse its worker's session kits (``kit_of``).
+# Test files (or single tests) that share an expensive kit run on one worker. With
+# ``pytest -n auto --dist loadfile`` the scheduler below (xdist's hook) hands out whole files, as
+# loadfile does, except that these join the named file's worker and reuse its session kits
+# (``kit_of``). (xdist's own ``--dist loadgroup`` does not group under pytest 9.)
 SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_sphere]": "test_wrist.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_quasi_ellipsoid]": "test_wrist.py",
     "test_bennett_kit.py": "test_bennett_cli.py",  # tests/designs/bennett_fixed
 }
-# The groups that take longest run first, so the two workers end together.
-FIRST = ("test_wrist.py", "test_bennett_cli.py", "test_sweep.py", "test_check.py", "test_manifest_schema.py")
+# The groups that take longest go first, so the two workers end together.
+FIRST = ("test_wrist.py", "test_bennett_cli.py", "test_manifest_schema.py", "test_sweep.py", "test_check.py")
 
 
-def _group(item) -> str:
-    file = item.nodeid.split("::", 1)[0].rsplit("/", 1)[-1]
-    here = item.nodeid.rsplit("/", 1)[-1]
+def _group(nodeid: str) -> str:
+    path = nodeid.split("::", 1)[0]
+    file, here = path.rsplit("/", 1)[-1], nodeid.rsplit("/", 1)[-1]
     return SHARED.get(here, SHARED.get(file, file))
 
 
 def pytest_collection_modifyitems(config, items):
-    for item in items:
-        item.add_marker(pytest.mark.xdist_group(_group(item)))
     rank = {g: i for i, g in enumerate(FIRST)}
-    items.sort(key=lambda it: rank.get(_group(it), len(FIRST)))  # stable: a file's tests keep their order
+    items.sort(key=lambda it: rank.get(_group(it.nodeid), len(FIRST)))  # stable: a file keeps its order
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """Whole files per worker (xdist's loadfile), the ``SHARED`` tests with the file they share a kit with."""
+    from xdist.scheduler import LoadScopeScheduling
+
+    class SharedKits(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _group(nodeid)
+
+    return SharedKits(config, log)
