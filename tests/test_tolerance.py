@@ -169,3 +169,12 @@ def test_report_section_of_a_written_result(nominal, tmp_path):
     r["design_digest"] = "another design"
     (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
     assert pipeline.tolerance_result(loaded.raw, tmp_path) is None
+
+
+def test_the_default_chunk_depends_on_the_samples_only():
+    """Large studies are cut into about TASKS tasks (the scheduler's cost per task stays small),
+    small ones into chunks of CHUNK; never more than MAX_CHUNK samples a task."""
+    from partgen.design.tolerance import chunk_sizes
+    assert studies.default_chunk(3000) == studies.CHUNK
+    assert studies.default_chunk(300_000) == 18_750 and len(chunk_sizes(300_000, 18_750)) == studies.TASKS
+    assert studies.default_chunk(10**9) == studies.MAX_CHUNK
