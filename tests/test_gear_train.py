@@ -122,3 +122,21 @@ def test_bad_tables_are_exit_2_naming_the_key(tmp_path, capsys, change, key):
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["key"] == key, err
     assert not (tmp_path / "out").exists()
+
+
+def test_every_shaft_runs_through_open_bores_and_a_plugged_one_fails(reducer):
+    """Each shaft's way through its gear part and both frame plates is open where it enters (a
+    rod of the shaft's size pushed in as the part prints); a gear part with its bore plugged fails."""
+    import manifold3d as m3d
+
+    from partgen.checks.bores import bore_findings
+    kit = reducer.kit
+    found, table = bore_findings(kit.parts)
+    assert not [f for f in found if f.severity == "fail"]
+    shafts = [p for p in kit.parts if p.name.startswith("shaft")]
+    assert sum(len(t) for t in table.values()) == 3 * len(shafts)  # the gear part and two plates per shaft
+    g = next(p for p in kit.parts if p.name == "gears1")
+    b = g.bores[0]
+    plug = m3d.Manifold.cylinder(1.0, b.diameter_mm).translate((0.0, 0.0, b.point[2] + b.depth_mm / 2))
+    found, _ = bore_findings([dataclasses.replace(g, solid=g.solid + plug)])
+    assert [f.rule for f in found if f.severity == "fail"] == ["bore-open"]

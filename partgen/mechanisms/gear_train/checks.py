@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...checks.bed import bed_findings
+from ...checks.bores import bore_findings
 from ...checks.fits import check_fits
 from ...checks.meshing import check_meshes
 from ...checks.motion import prepare, sweep
@@ -126,6 +127,9 @@ def check_train(kit: TrainKit, samples: int | None = None, progress=None) -> Res
     res.add(*found)
     found, on_bed = bed_findings(kit.parts, s.printer)
     res.add(*found)
+    found, bores = bore_findings(kit.parts)  # every shaft's way through the gears and the plates open
+    res.add(*found)
+    on_bed = {**on_bed, "bores": bores}
     t4 = time.perf_counter()
     few = thetas[:: max(1, len(thetas) // 8)][:8]
     turned = turn_train(kit, few, tol=1e-6)

@@ -21,7 +21,7 @@ from fractions import Fraction
 import numpy as np
 
 from ...config.loader import LoadedDesign, printer_limits
-from ...core.parts import Part
+from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
@@ -342,7 +342,10 @@ def _gear_part(s: TrainSpec, sh: Shaft) -> Part:
         web.append((circle(r, tol).difference(hole), s.layer_z(a.layer) + s.face_width, s.layer_z(b.layer)))
     solid = union(solids + ([prisms(web)] if web else []))
     flip = mine[0].layer > 0  # its lowest gear stands on a hub: print it upside down, top gear face on the bed
-    return Part(f"gears{sh.index}", "gear", solid, print_flip=flip, gear=mine[0].spec if len(mine) == 1 else None)
+    z_lo, z_hi = (s.gap if lo > s.gap + 1e-9 else lo), s.layer_z(mine[-1].layer) + s.face_width
+    pin = 2 * s.shaft_radius if sh.bore == "round" else 2 * (s.shaft_radius - FLAT_DEPTH)
+    return Part(f"gears{sh.index}", "gear", solid, print_flip=flip, gear=mine[0].spec if len(mine) == 1 else None,
+                bores=(Bore("shaft", (0.0, 0.0, z_lo), (0.0, 0.0, 1.0), pin, z_hi - z_lo),))
 
 
 def build_train(s: TrainSpec, progress=None) -> TrainKit:
@@ -363,12 +366,18 @@ def build_train(s: TrainSpec, progress=None) -> TrainKit:
     rings = [(circle(sh.hub_radius, tol, sh.centre).difference(holes[sh.index]), 0.0, s.gap) for sh in s.shafts]
     columns = [(circle(s.spacer_radius, tol, c), 0.0, zt) for c in spacers]
     pegs = [(circle(peg, tol, c), zt, zt + t) for c in spacers]
-    parts = [Part("frame_bottom", "frame", union([slab(bottom, -t, 0.0), prisms(rings + columns + pegs)]))]
+    pin = 2 * s.shaft_radius  # the round part of every shaft runs through both plates
+    down, up = (0.0, 0.0, -1.0), (0.0, 0.0, 1.0)
+    parts = [Part("frame_bottom", "frame", union([slab(bottom, -t, 0.0), prisms(rings + columns + pegs)]),
+                  bores=tuple(Bore(f"shaft{sh.index}", (sh.centre[0], sh.centre[1], -t), up, pin, t + s.gap)
+                              for sh in s.shafts))]
     say("frame_top")
     top = outline
     for h in holes + [circle(peg + s.press / 2, tol, c, hole=True) for c in spacers]:
         top = top.difference(h)
-    parts.append(Part("frame_top", "frame", slab(top, zt, zt + t)))
+    parts.append(Part("frame_top", "frame", slab(top, zt, zt + t),
+                      bores=tuple(Bore(f"shaft{sh.index}", (sh.centre[0], sh.centre[1], zt + t), down, pin, t)
+                                  for sh in s.shafts)))
     contacts = []
     for sh in s.shafts:
         say(f"gears{sh.index}")
