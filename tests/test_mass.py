@@ -72,7 +72,7 @@ def test_layers_agree_with_the_minkowski_erosion():
 
     part = link_solid([Boss((0, 0, 0), (0.3, 0.2, 1.0), 0.0, 10.0, 8.0, 5.15)], [Bar((0, 0, 0), (50, 0, 25), 4.0)])
     s = PrintSettings(wall=1.2, skin=1.0)
-    eroded = part.minkowski_difference(m3d.Manifold.cylinder(2 * s.skin, s.wall, -1.0, 48, True))
+    eroded = part.minkowski_difference(m3d.Manifold.cylinder(2 * s.skin, s.wall, -1.0, 24, True))
     ve, ce = volume_centroid(eroded)
     vi, ci = interior(part, s)
     assert vi == pytest.approx(ve, rel=0.01)
