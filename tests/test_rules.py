@@ -148,3 +148,19 @@ def test_thin_hub_wall_is_warned_and_the_boss_keeps_the_printers_wall(tmp_path):
     assert not [m for r, m in fails if r == "wall"], fails
     loaded = chain_load(design(tmp_path, gears={"hub_wall_mm": 0.9}))
     assert ("wall", "gears.hub_wall_mm") in {(f.rule, f.key) for f in loaded.mechanism.findings}
+
+
+def test_an_axial_gap_at_the_least_clearance_passes_and_under_it_is_warned(tmp_path):
+    """Found by the sweep (chain00925): stacked layers stand joints.axial_gap_mm apart, and a gap
+    equal to checks.min_clearance_mm failed the check on float rounding ("0.300 mm apart along z
+    (needs 0.3 mm)") with no build warning. Equal passes; under it, build warns with the check's rule."""
+    from partgen.checks.motion import sample_angles, sweep
+    at = pipeline.load(design(tmp_path, joints={"axial_gap_mm": 0.3}, checks={"min_clearance_mm": 0.3}))
+    assert not [f for f in at.spec.mechanism.findings if f.rule == "clearance"]
+    kit = pipeline.make_kit(at)
+    found, figures = sweep(kit, prepare(kit), sample_angles(8))
+    assert not [f for f in found if f.check == "clearance"], [f.message for f in found][:3]
+    assert figures["closest_approach"]["mm"] == pytest.approx(0.3)
+    under = pipeline.load(design(tmp_path, joints={"axial_gap_mm": 0.25}, checks={"min_clearance_mm": 0.3}))
+    (warned,) = [f for f in under.spec.mechanism.findings if f.rule == "clearance"]
+    assert warned.severity == "warn" and warned.key == "joints.axial_gap_mm" and "≥ 0.3" in warned.message

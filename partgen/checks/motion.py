@@ -20,6 +20,8 @@ from ..core.protocol import Kit
 from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs
 from ..core.findings import Finding
 
+CLEARANCE_SLACK = 1e-9  # mm: a gap equal to the least clearance (sums of layer heights in floats) passes
+
 __all__ = ["PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
 
 
@@ -201,7 +203,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                              "location_mm": [round(float(c), 3) for c in w.where_gap]})
         if closest is None or w.gap < closest[0]:
             closest = (w.gap, names[a], names[b], float(thetas[w.n_gap]), w.where_gap)
-        if w.gap < settings.min_clearance:
+        if w.gap < settings.min_clearance - CLEARANCE_SLACK:
             findings.append(Finding(
                 "clearance", "fail",
                 f"{names[a]} and {names[b]} come within {w.gap:.3f} mm at crank angle "
@@ -227,7 +229,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                          "theta_deg": round(math.degrees(thetas[n]), 3), "location_mm": [round(float(q), 3) for q in where]})
             if closest is None or dz < closest[0]:
                 closest = (dz, names[l], names[h_], float(thetas[n]), where)
-            if dz < settings.min_clearance:
+            if dz < settings.min_clearance - CLEARANCE_SLACK:
                 findings.append(Finding(
                     "clearance", "fail", f"{names[l]} and {names[h_]} are only {dz:.3f} mm apart along z "
                     f"(needs {settings.min_clearance:g} mm)", (names[l], names[h_]), float(thetas[n]), dz, "mm", where))

@@ -37,7 +37,7 @@ class ChainParams(Protocol):
     system: ToothSystem
     printer: PrinterLimits
     joints: object  # axle_diameter, running_clearance, press_clearance (diametral), axial_gap
-    checks: object  # min_contact_ratio, min_tip_width_roads
+    checks: object  # min_contact_ratio, min_tip_width_roads, min_clearance
     hub_wall: float
     boss_wall: float
     pen_diameter: float
@@ -256,6 +256,13 @@ def kit_findings(params: ChainParams, belts: BeltSettings | None = None) -> list
     add(wall_breach(wall, pr.min_wall), "plates.boss_wall_mm",
         f"the plates' and the crank's walls around their D-holes; use boss_wall_mm ≥ "
         f"{pr.min_wall + params.boss_wall - wall:.2f}")
+    least = params.checks.min_clearance
+    if jn.axial_gap < least - 1e-9:
+        # stacked layers (a gear under the next link's plate) stand the axial gap apart: the check
+        # holds every pair of parts that must not touch to its least clearance
+        out.append(design_finding("warn", "clearance", f"the axial gap between stacked layers is {jn.axial_gap:g} mm, "
+                                  f"under the {least:g} mm the check holds parts apart: use joints.axial_gap_mm ≥ "
+                                  f"{least:g} (or checks.min_clearance_mm ≤ {jn.axial_gap:g})", "joints.axial_gap_mm"))
     if jn.running_clearance / 2 < HOLE_EXCESS:
         # a turning pin's facets sweep past its bore's: under the facets' depth they can meet
         out.append(design_finding("warn", "fit", f"running clearance {jn.running_clearance / 2:.3f} mm radial is under "
