@@ -40,6 +40,7 @@ __all__ = [
     "auto_profile_shift",
     "is_undercut",
     "working_pressure_angle",
+    "inv_inverse",
     "centre_distance",
     "contact_ratio",
     "circumferential_backlash",
@@ -213,7 +214,13 @@ def working_pressure_angle(z1, z2, alpha, x1, x2) -> float:
         raise ValueError(f"x1 + x2 = {xs!r} is too negative: no working pressure angle exists")
     if y > math.tan(1.5) - 1.5:
         raise ValueError(f"x1 + x2 = {xs!r} is too large: working pressure angle above 86 deg")
-    a = min((3.0 * y) ** (1.0 / 3.0), 1.5)  # inv(a) >= a**3/3: starts right of the root
+    return inv_inverse(y)
+
+
+def inv_inverse(y: float) -> float:
+    """The angle a (rad) with ``inv(a) = tan(a) - a = y`` for 0 < y ≤ inv(1.5), by Newton's method
+    (``inv(a) >= a**3/3``, so it starts right of the root and converges monotonically)."""
+    a = min((3.0 * y) ** (1.0 / 3.0), 1.5)
     for _ in range(100):
         ta = math.tan(a)
         step = (ta - a - y) / (ta * ta)

@@ -51,14 +51,7 @@ def internal_working_angle(z1: int, z2: int, alpha: float, x1: float, x2: float)
     y = involute.inv(alpha) + 2.0 * math.tan(alpha) * (x2 - x1) / (z2 - z1)
     if y <= 0:
         raise ValueError("x2 − x1 too negative: no working pressure angle")
-    a = min((3.0 * y) ** (1.0 / 3.0), 1.5)
-    for _ in range(100):
-        ta = math.tan(a)
-        step = (ta - a - y) / (ta * ta)
-        a -= step
-        if abs(step) <= 1e-16 * a:
-            break
-    return a
+    return involute.inv_inverse(y)
 
 
 def internal_centre_distance(z1: int, z2: int, m: float, alpha: float, x1: float = 0.0, x2: float = 0.0) -> float:
