@@ -38,7 +38,11 @@ class Kit(Protocol):
 
 class ParamsKit:
     """The Kit protocol's name, printer, density and material, read from the kit's ``params``
-    (a base for a mechanism's kit dataclass that keeps its parameters as ``params``)."""
+    (a base for a mechanism's kit dataclass that keeps its parameters as ``params``), and a part
+    by its name."""
+
+    def part(self, name: str) -> Part:
+        return next(p for p in self.parts if p.name == name)
 
     @property
     def name(self) -> str:

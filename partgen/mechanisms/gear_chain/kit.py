@@ -90,9 +90,6 @@ class Kit(ParamsKit):
     contacts: tuple[Contact, ...] = ()
     _posed: dict = field(default_factory=dict, init=False, compare=False, repr=False)  # θ -> poses (not copied by replace)
 
-    def part(self, name: str) -> Part:
-        return next(p for p in self.parts if p.name == name)
-
     def poses(self, theta: float) -> dict[str, np.ndarray]:
         """name -> (4, 4) world-from-local pose of every part at crank angle θ (rad)."""
         theta = float(theta)

@@ -293,9 +293,6 @@ class TrainKit(ParamsKit):
     def spec(self) -> TrainSpec:
         return self.params
 
-    def part(self, name: str) -> Part:
-        return next(p for p in self.parts if p.name == name)
-
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         out = {"frame_bottom": np.eye(4), "frame_top": np.eye(4)}

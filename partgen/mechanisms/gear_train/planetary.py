@@ -206,9 +206,6 @@ class PlanetaryKit(ParamsKit):
     def spec(self) -> PlanetarySpec:
         return self.params
 
-    def part(self, name: str) -> Part:
-        return next(p for p in self.parts if p.name == name)
-
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         c = s.carrier(float(theta))

@@ -146,9 +146,6 @@ class RackKit(ParamsKit):
     def spec(self) -> RackSpec:
         return self.params
 
-    def part(self, name: str) -> Part:
-        return next(p for p in self.parts if p.name == name)
-
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         a = -math.pi / 2 + float(theta)  # tooth 0 points down into a space of the rack at rest
