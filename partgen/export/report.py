@@ -8,7 +8,7 @@ import base64
 import html
 import math
 
-__all__ = ["data_uri", "table", "page"]
+__all__ = ["data_uri", "table", "page", "figure_png"]
 
 CSS = """
 body{font-family:system-ui,-apple-system,Segoe UI,Helvetica,Arial,sans-serif;margin:2em auto;max-width:1200px;
@@ -25,6 +25,19 @@ img{max-width:100%}.parts img{width:150px}.steps li{margin-bottom:1em}.steps .gr
 
 def data_uri(data: bytes, mime: str) -> str:
     return f"data:{mime};base64,{base64.b64encode(data).decode()}"
+
+
+def figure_png(fig, dpi: int = 110, bbox_inches: str | None = None) -> bytes:
+    """PNG bytes of a matplotlib figure, which is closed afterwards (``bbox_inches="tight"``: cropped
+    to what is drawn)."""
+    import io
+
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi, bbox_inches=bbox_inches)
+    plt.close(fig)
+    return buf.getvalue()
 
 
 def img(data: bytes, alt: str, mime: str = "image/png", width: int | None = None) -> str:

@@ -18,12 +18,6 @@ METRICS = (("mass_g", "mass of the printed parts (g)"), ("size_mm", "largest par
            ("least_clearance_mm", "least clearance over the motion (mm)"), ("jam_probability", "P(jam)"))
 
 
-def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")
-    return buf.getvalue()
-
-
 def tolerance_bars(result: dict, top: int = 15) -> bytes:
     """A PNG: P(jam) with its 95 % interval for the worst ``top`` joints, meshes and pairs."""
     import matplotlib
@@ -41,9 +35,7 @@ def tolerance_bars(result: dict, top: int = 15) -> bytes:
     ax.set_xlabel("probability of jamming (95 % interval)")
     ax.set_xlim(0, max(0.05, min(1.0, max(r["ci95"][1] for r in rows) * 1.1)) if rows else 1)
     ax.grid(axis="x", alpha=0.3)
-    data = _png(fig)
-    plt.close(fig)
-    return data
+    return R.figure_png(fig, 110, "tight")
 
 
 def tolerance_section(result: dict) -> tuple[str, str]:
@@ -102,9 +94,7 @@ def _plot(rows: list[dict], key: str, metric: str, label: str) -> bytes:
     ax.set_ylabel(label)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
-    data = _png(fig)
-    plt.close(fig)
-    return data
+    return R.figure_png(fig, 110, "tight")
 
 
 def sweep_page(rows: list[dict], keys: list[str], title: str, subtitle: str) -> str:

@@ -4,7 +4,6 @@ the spatial one, from above and in perspective) and the centre-of-mass trace (ma
 from __future__ import annotations
 
 import dataclasses
-import io
 import math
 
 import matplotlib
@@ -16,6 +15,7 @@ import numpy as np  # noqa: E402
 from ...design import bennett_butterfly as bbf  # noqa: E402
 from ...design.balanced import LINKS  # noqa: E402
 from ...export.render import view_matrix  # noqa: E402
+from ...export.report import figure_png  # noqa: E402
 
 __all__ = ["poses_figure", "com_figure"]
 
@@ -28,13 +28,6 @@ def _segments(points: dict[str, np.ndarray]) -> list[tuple[int, np.ndarray]]:
     for i, (joints, _, _) in LINKS.items():
         out.append((i, np.array([points[j] for j in joints])))
     return out
-
-
-def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=90, bbox_inches="tight")
-    plt.close(fig)
-    return buf.getvalue()
 
 
 def poses_figure(bb: bbf.BennettButterfly, angles_deg: list[float], com: list[np.ndarray] | None = None) -> bytes:
@@ -68,7 +61,7 @@ def poses_figure(bb: bbf.BennettButterfly, angles_deg: list[float], com: list[np
             title = ("planar form (twists 0)", "spatial form from above", "spatial form from the side, joint axes grey")[r]
             ax.set_title(f"{title}\n{ang:.0f}° between links 1 and 4", fontsize=9)
     fig.suptitle("the balanced butterfly at a few poses (q1 = 0; S marked ★ at the origin)")
-    return _png(fig)
+    return figure_png(fig, 90, "tight")
 
 
 def com_figure(angles_deg: np.ndarray, traces: dict[str, list[float]], tolerance: float,
@@ -83,4 +76,4 @@ def com_figure(angles_deg: np.ndarray, traces: dict[str, list[float]], tolerance
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     ax.set_title("centre-of-mass trace over the input grid")
-    return _png(fig)
+    return figure_png(fig, 90, "tight")

@@ -3,7 +3,6 @@ revolution of the output, traced (transmission error from the printed outlines) 
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 
@@ -20,6 +19,7 @@ from ...errors import DesignError
 from ...geometry.measure import oversize, section
 from .kit import PairKit, PairSpec, build_pair, resolve_pair
 from .schema import GearPairDesign
+from ...export.report import figure_png
 
 __all__ = ["GearPair", "MECHANISM", "flank_play"]
 
@@ -254,11 +254,8 @@ def _figure(spec: PairSpec, out_angle: np.ndarray, te_mm: np.ndarray, backlash: 
     ax.set_title(f"{spec.name}: over one turn of the output, from the printed outlines")
     ax.grid(alpha=0.3)
     ax.legend()
-    buf = io.BytesIO()
     fig.tight_layout()
-    fig.savefig(buf, format="png", dpi=110)
-    plt.close(fig)
-    return buf.getvalue()
+    return figure_png(fig, 110)
 
 
 MECHANISM = GearPair()

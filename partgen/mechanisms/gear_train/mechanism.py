@@ -5,7 +5,6 @@ arcminutes, the ratio measured, the backlash at the output) and reported."""
 
 from __future__ import annotations
 
-import io
 import math
 from pathlib import Path
 
@@ -23,6 +22,7 @@ from .motion import turn_train
 from .planetary import PlanetaryKit, PlanetarySpec, build_planetary, check_planetary, resolve_planetary, turn_planetary
 from .rack import RackKit, RackSpec, build_rack, check_rack, resolve_rack, turn_rack
 from .schema import GearTrainDesign
+from ...export.report import figure_png
 
 __all__ = ["GearTrain", "MECHANISM"]
 
@@ -351,11 +351,8 @@ def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarra
     ax.set_title(f"{spec.name}: over one turn of the output, from the printed outlines")
     ax.grid(alpha=0.3)
     ax.legend()
-    buf = io.BytesIO()
     fig.tight_layout()
-    fig.savefig(buf, format="png", dpi=110)
-    plt.close(fig)
-    return buf.getvalue()
+    return figure_png(fig, 110)
 
 
 MECHANISM = GearTrain()
