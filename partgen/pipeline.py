@@ -14,17 +14,16 @@ from typing import NamedTuple
 
 from .config.loader import LoadedDesign
 from .config.overrides import Overrides, parse_set
-from .config.yamlio import dump_yaml
-from .core.findings import Finding, Result
+from .core.findings import Result
 from .core.protocol import Kit, Mechanism, Trace
 from .errors import ConfigError, DesignError
 from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output
-from .export.prints import plan_plates, printed_groups, stale_files, write_plate_files
+from .export.prints import plan_plates, plates_png, stale_finding, write_plate_files
+from .export.studies import saved_tolerance
 from .mechanisms import REGISTRY, load_design
 
-__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides", "design_digest",
-           "tolerance_result"]
+__all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
 
 
 @dataclass(frozen=True)
@@ -96,7 +95,7 @@ _KITS: dict = {}  # one built kit per process: (design bytes, printer bytes) -> 
 
 def kit_key(loaded: Loaded) -> tuple:
     """What a kit is built from: the kind, the resolved design and printer documents."""
-    return loaded.mechanism.kind, dump_yaml(loaded.raw.document()), dump_yaml(loaded.raw.printer_document())
+    return loaded.mechanism.kind, loaded.raw.digest()
 
 
 def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
@@ -111,26 +110,6 @@ def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
         _KITS.clear()
         _KITS[key] = kit
     return _KITS[key]
-
-
-def design_digest(raw: LoadedDesign) -> str:
-    """A fingerprint of a design as loaded (its YAML with the overrides, and its printer)."""
-    import hashlib
-
-    return hashlib.sha256(dump_yaml(raw.document()) + b"\0" + dump_yaml(raw.printer_document())).hexdigest()[:16]
-
-
-def tolerance_result(raw: LoadedDesign, kit_dir: Path | None) -> dict | None:
-    """The result `partgen tolerance` wrote for this design (``<kit>/tolerance/result.json`` or
-    ``out/<name>/tolerance/result.json``), if it was made from the same design and printer."""
-    import json
-
-    folder = (kit_dir / "tolerance") if kit_dir else Path("out") / raw.design.name / "tolerance"
-    try:
-        data = json.loads((folder / "result.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError, UnicodeDecodeError):
-        return None
-    return data if isinstance(data, dict) and data.get("design_digest") == design_digest(raw) else None
 
 
 def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None):
@@ -151,11 +130,9 @@ def build(path, dest=None, progress=None, notify=None, over: Overrides | None = 
         mech.refuse(spec, kit)
     except DesignError as e:
         raise ConfigError(loaded.path, e.key_path, e.problem) from None
-    design = {**mech.design_summary(spec, kit)}
-    design.setdefault("kind", mech.kind)
-    design.setdefault("config", loaded.path.name)
-    design.setdefault("printer", kit.printer.name)  # every manifest says what it prints on and in what
-    design.setdefault("material", kit.material)
+    design = mech.design_summary(spec, kit)  # every manifest says its kind, and what it prints on and in what
+    design = {**design, **{k: v for k, v in (("kind", mech.kind), ("config", loaded.path.name),
+                                             ("printer", kit.printer.name), ("material", kit.material)) if k not in design}}
     man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress)
     return Built(loaded, kit, man, claim.dest)
 
@@ -172,18 +149,12 @@ def check(target, samples: int | None = None, progress=None, plates_dir=None, wr
     loaded = load(target, raw)
     kit = make_kit(loaded)
     result = loaded.mechanism.check(loaded.spec, kit, samples, progress)
-    if kit_dir is not None:
-        stale = stale_files(kit, kit_dir)
-        if stale:
-            result.add(Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its "
-                               f"design.yaml builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
-                               tuple(s[:-4] for s in stale)))
+    _add_stale(result, kit, kit_dir)
     lay, meshes, picture = plan_plates(kit, loaded.mechanism.plate_margin(loaded.spec), result)
-    if lay is None or claim is None:
-        return Checked(loaded, kit, result, None)
-    with atomic_dir(claim) as tmp:
-        write_plate_files(tmp, kit, lay, meshes, picture)
-    return Checked(loaded, kit, result, claim.dest)
+    if lay is not None and claim is not None:
+        with atomic_dir(claim) as tmp:
+            write_plate_files(tmp, kit, lay, meshes, picture)
+    return Checked(loaded, kit, result, claim.dest if lay is not None and claim is not None else None)
 
 
 def trace(target, samples: int | None = None, plots_dir=None, animate: bool = True,
@@ -202,13 +173,17 @@ def trace(target, samples: int | None = None, plots_dir=None, animate: bool = Tr
     return Traced(loaded, tr, claim.dest)
 
 
+def _add_stale(result: Result, kit: Kit, kit_dir: Path | None) -> None:
+    found = stale_finding(kit, kit_dir) if kit_dir is not None else None
+    if found is not None:
+        result.add(found)
+
+
 def report(target, dest=None, samples: int | None = None, progress=None, over: Overrides | None = None) -> Path:
     """Write DIR/index.html (default out/<name>/report/, or KITDIR/report): one self-contained page
     with the mechanism's sections, the bill of parts with pictures, what to buy, the build plates.
     The kit is built once and shared by the check, the trace and the pictures."""
-    from .export import report as R
-    from .export.assembly import steps_of
-    from .export.bill import bill_sections
+    from .export.report_page import kit_page  # matplotlib and the renderer: only the report needs them
 
     say = progress or (lambda step: None)
     raw, kit_dir = _raw(target, over)
@@ -220,35 +195,16 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     mech, spec = loaded.mechanism, loaded.spec
     say("check")
     result = mech.check(spec, kit, samples, None)
-    if kit_dir is not None and stale_files(kit, kit_dir):
-        result.add(Finding("kit", "fail", f"STL files in {kit_dir} differ from what its design.yaml builds: rebuild it"))
+    _add_stale(result, kit, kit_dir)
+    say("trace")
     with tempfile.TemporaryDirectory() as tmpdir:
-        tmp = Path(tmpdir)
-        say("trace")
-        tr = mech.trace(spec, kit, None, tmp, True)
-        files = {name: (tmp / name).read_bytes() for name in tr.files}
-        _, _, picture = plan_plates(kit, mech.plate_margin(spec), result)
-        plates_png = None
-        if picture is not None:
-            picture(tmp / "plates.png")
-            plates_png = (tmp / "plates.png").read_bytes()
+        tr = mech.trace(spec, kit, None, Path(tmpdir), True)
+        files = {name: (Path(tmpdir) / name).read_bytes() for name in tr.files}
+    plates = plates_png(kit, mech.plate_margin(spec), result)
     say("pictures")
-    purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
-    sections = mech.report_sections(spec, kit, result, tr, files, {})
-    own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
-    sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit),
-                                              steps_of(mech, spec, kit)) if x[0] not in own]
-    tol = tolerance_result(raw, kit_dir)
-    if tol is not None:  # `partgen tolerance` ran on this very design: its result is a section
-        from .export.studies import tolerance_section
-
-        sections.append(tolerance_section(tol))
-    if plates_png:
-        sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
-                                         f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "
-                                         "their 3MF files.</figcaption></figure>"))
+    tol = saved_tolerance(kit_dir / "tolerance" if kit_dir else Path("out") / raw.design.name / "tolerance",
+                          raw.digest())
     out = claim.dest
     with atomic_dir(claim) as tmp:
-        (tmp / "index.html").write_text(R.page(f"partgen report: {kit.name}", sections, mech.subtitle(spec)),
-                                        encoding="utf-8")
+        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol), encoding="utf-8")
     return out

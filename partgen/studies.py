@@ -24,6 +24,7 @@ from .core.protocol import tolerance_hook
 from .design.tolerance import ChunkTally, MarginModel, add_tallies, chunk_sizes, run_chunk, summarise
 from .errors import ConfigError, OptionError
 from .export.outputs import open_incremental
+from .export.prints import printed_groups, stale_files
 
 __all__ = ["CHUNK", "default_chunk", "ToleranceRun", "tolerance", "sample", "nominal_model", "Vary", "parse_vary", "sweep_points", "sweep_point", "sweep"]
 
@@ -159,7 +160,7 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
     with C.cluster(workers, scheduler, processes) as client:  # an unreachable scheduler: exit 2, nothing written
         t_cluster = time.perf_counter() - t0
         model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples)
-        header = {"study": "tolerance", "design": pipeline.design_digest(raw), "seed": int(seed)}
+        header = {"study": "tolerance", "design": raw.digest(), "seed": int(seed)}
         total, info = sample(client, model, samples, seed, claim, resume, header, progress, chunk)
     summary = summarise(model, total)
     summary.update({"design": raw.design.name, "kind": loaded.mechanism.kind, "config": str(loaded.path),
@@ -171,7 +172,7 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                                                             "nominal_check": round(check_s, 3),
                                                             "samples": info["seconds"]}})
     if kit_dir is not None:  # the study is of the design the folder's design.yaml builds: say if its STLs differ
-        summary["kit_stale_files"] = pipeline.stale_files(pipeline.make_kit(loaded), kit_dir)
+        summary["kit_stale_files"] = stale_files(pipeline.make_kit(loaded), kit_dir)
     out = info["dest"]
     if out is not None:
         _write_atomic(out / "result.json", json.dumps(_json_safe(summary), indent=1))
@@ -278,7 +279,7 @@ def sweep_point(shared: dict, index: int, values: dict) -> dict:
         row["seconds"] = round(time.perf_counter() - t0, 3)
         return row
     fails = [f for f in result.findings if f.severity == "fail"]
-    groups = pipeline.printed_groups(kit)
+    groups = printed_groups(kit)
     close = result.figures.get("motion", {}).get("closest_approach")
     row.update(status="pass" if result.ok else "fail", ok=result.ok, failures=len(fails),
                first_failure=f"{fails[0].check}: {fails[0].message}" if fails else None,

@@ -156,19 +156,19 @@ def test_cli_bad_input(tmp_path, capsys):
 
 
 def test_report_section_of_a_written_result(nominal, tmp_path):
-    from partgen.export.studies import tolerance_section
+    from partgen.export.studies import saved_tolerance, tolerance_section
 
     loaded, _, _ = nominal["butterfly_liu2017"]
     r = run_local(model_of(nominal, "butterfly_liu2017", FORTUS), 1000)
-    r.update(design_digest=pipeline.design_digest(loaded.raw), seed=0, accuracy_source="test")
+    r.update(design_digest=loaded.raw.digest(), seed=0, accuracy_source="test")
     (tmp_path / "tolerance").mkdir()
     (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
-    assert pipeline.tolerance_result(loaded.raw, tmp_path) == json.loads(json.dumps(r))
+    assert saved_tolerance(tmp_path / "tolerance", loaded.raw.digest()) == json.loads(json.dumps(r))
     title, body = tolerance_section(r)
     assert title == "Tolerance" and "D10–G11" in body and body.count("<img") == 1
     r["design_digest"] = "another design"
     (tmp_path / "tolerance" / "result.json").write_text(json.dumps(r))
-    assert pipeline.tolerance_result(loaded.raw, tmp_path) is None
+    assert saved_tolerance(tmp_path / "tolerance", loaded.raw.digest()) is None
 
 
 def test_the_default_chunk_depends_on_the_samples_only():

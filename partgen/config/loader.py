@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import difflib
+import hashlib
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,7 +17,7 @@ from ..core.printer import PrinterLimits
 from ..errors import ConfigError
 from .overrides import NO_OVERRIDES, Overrides, UsageError, apply_sets, blame
 from .schema import Printer
-from .yamlio import read_yaml_file
+from .yamlio import dump_yaml, read_yaml_file
 
 __all__ = ["LoadedDesign", "load_design", "read_yaml", "key_path", "PRINTERS_DIR", "shipped_printers",
            "printer_path", "printer_limits", "command_line_printer"]
@@ -41,6 +42,10 @@ class LoadedDesign:
 
     def printer_document(self) -> dict:
         return copy.deepcopy(self.printer_data) if self.printer_data is not None else read_yaml(self.printer_path)
+
+    def digest(self) -> str:
+        """A fingerprint of the design as loaded (its YAML with the overrides, and its printer)."""
+        return hashlib.sha256(dump_yaml(self.document()) + b"\0" + dump_yaml(self.printer_document())).hexdigest()[:16]
 
 
 def read_yaml(path: Path) -> dict:

@@ -4,13 +4,14 @@ check, report and the bill), the STLs of a kit folder that differ from them, and
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
 
 from ..core.findings import Finding, Result
 from ..core.protocol import Kit
 from .kit import PrintedPart, group_parts, printed
 
-__all__ = ["printed_groups", "stale_files", "plan_plates", "write_plate_files"]
+__all__ = ["printed_groups", "stale_files", "stale_finding", "plan_plates", "plates_png", "write_plate_files"]
 
 _GROUPS: dict = {}  # id(kit) -> (kit, its printed parts grouped): one kit at a time
 
@@ -36,6 +37,16 @@ def stale_files(kit: Kit, kit_dir: Path) -> list[str]:
             or (kit_dir / f"{g[0].part.name}.stl").read_bytes() != g[0].stl]
 
 
+def stale_finding(kit: Kit, kit_dir: Path) -> Finding | None:
+    """A failed finding if the STLs of ``kit_dir`` are not what ``kit`` prints (None if they are)."""
+    stale = stale_files(kit, kit_dir)
+    if not stale:
+        return None
+    return Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its design.yaml "
+                   f"builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
+                   tuple(s[:-4] for s in stale))
+
+
 def plan_plates(kit: Kit, margin: float, result: Result):
     """Pack the printed parts on build plates (``margin`` mm between them); a finding in ``result``
     if one cannot fit. Returns the layout (or None), the meshes by name and a function that draws
@@ -56,6 +67,16 @@ def plan_plates(kit: Kit, margin: float, result: Result):
         plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, path,
                       f"{kit.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
     return lay, meshes, picture
+
+
+def plates_png(kit: Kit, margin: float, result: Result) -> bytes | None:
+    """The build plates' picture as PNG bytes (None if the parts do not fit; ``result`` then says so)."""
+    _, _, picture = plan_plates(kit, margin, result)
+    if picture is None:
+        return None
+    with tempfile.TemporaryDirectory() as tmp:
+        picture(Path(tmp) / "plates.png")
+        return (Path(tmp) / "plates.png").read_bytes()
 
 
 def write_plate_files(folder: Path, kit: Kit, lay, meshes: dict, picture) -> None:

@@ -6,16 +6,28 @@ from __future__ import annotations
 import csv
 import html
 import io
+import json
 import math
+from pathlib import Path
 
 from . import report as R
 
-__all__ = ["tolerance_section", "tolerance_bars", "SWEEP_COLUMNS", "sweep_csv", "sweep_page"]
+__all__ = ["saved_tolerance", "tolerance_section", "tolerance_bars", "SWEEP_COLUMNS", "sweep_csv", "sweep_page"]
 
 SWEEP_COLUMNS = ("point", "status", "ok", "failures", "first_failure", "mass_g", "size_mm", "parts",
                  "least_clearance_mm", "jam_probability", "jam_ci95_low", "jam_ci95_high", "seconds")
 METRICS = (("mass_g", "mass of the printed parts (g)"), ("size_mm", "largest part (mm)"),
            ("least_clearance_mm", "least clearance over the motion (mm)"), ("jam_probability", "P(jam)"))
+
+
+def saved_tolerance(folder: Path, digest: str) -> dict | None:
+    """The result `partgen tolerance` wrote into ``folder`` (its result.json), if it was made from the
+    design whose digest is ``digest`` (``LoadedDesign.digest()``: the same design and printer)."""
+    try:
+        data = json.loads((Path(folder) / "result.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError, UnicodeDecodeError):
+        return None
+    return data if isinstance(data, dict) and data.get("design_digest") == digest else None
 
 
 def tolerance_bars(result: dict, top: int = 15) -> bytes:

@@ -1,0 +1,33 @@
+"""The report page of a kit: the mechanism's own sections with the shared ones put in — the bill of
+parts with pictures and what to buy, the assembly steps, a tolerance study's result when one was
+made of this very design, and the build plates. Knows only the Kit and Mechanism protocols."""
+
+from __future__ import annotations
+
+from ..core.findings import Result
+from ..core.protocol import Kit, Mechanism, Trace
+from . import report as R
+from .assembly import steps_of
+from .bill import bill_sections
+from .prints import printed_groups
+from .studies import tolerance_section
+
+__all__ = ["kit_page"]
+
+
+def kit_page(mech: Mechanism, spec, kit: Kit, result: Result, trace: Trace, files: dict[str, bytes],
+             plates_png: bytes | None, tolerance: dict | None) -> str:
+    """The whole HTML page: ``files`` are the trace's figures by name, ``plates_png`` the build
+    plates' picture, ``tolerance`` the saved result of `partgen tolerance` (or None)."""
+    purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
+    sections = mech.report_sections(spec, kit, result, trace, files, {})
+    own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
+    sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit),
+                                              steps_of(mech, spec, kit)) if x[0] not in own]
+    if tolerance is not None:
+        sections.append(tolerance_section(tolerance))
+    if plates_png:
+        sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
+                                         f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "
+                                         "their 3MF files.</figcaption></figure>"))
+    return R.page(f"partgen report: {kit.name}", sections, mech.subtitle(spec))
