@@ -308,7 +308,7 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     points.csv and index.html are written."""
     from .config.overrides import Overrides
     from .export.studies import sweep_csv, sweep_page
-    from .mechanisms import load_design
+    from .mechanisms import REGISTRY, load_design
 
     if not varies:
         raise OptionError("--vary", "", "give at least one KEY=START:STOP:STEPS")
@@ -321,6 +321,9 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
         raise OptionError("--tolerance-samples", str(tolerance_samples), "must be at least 1")
     over = over or Overrides()
     raw = load_design(config, over)  # the design itself must be valid
+    if tolerance_samples and tolerance_hook(REGISTRY[raw.design.kind]) is None:
+        raise OptionError("--tolerance-samples", str(tolerance_samples), f"a {raw.design.kind} design offers no "
+                          "tolerance study yet (P(jam) is modelled for kind: gear_chain)")
     for v in vs:
         for x in {v.start, v.stop}:
             val = int(round(x)) if v.integer else x

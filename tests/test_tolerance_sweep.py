@@ -49,9 +49,32 @@ def test_sweep_builds_and_checks_every_point(tmp_path, capsys):
     (["--vary", "gears.module_mm=-1:2:3"], "module_mm"),              # outside the schema's range
     (["--vary", "gears.module_mm=1:2:3", "--tolerance-samples", "0"], "tolerance-samples"),
     (["--vary", "gears.module_mm=1:2:3", "--random", "0"], "random"),
+    (["--vary", "gears.module_mm=1:2:3", "--tolerance-samples", "100"], "no tolerance study"),  # not modelled
 ])
 def test_bad_input_writes_nothing(tmp_path, capsys, args, what):
     out = tmp_path / "sweep"
     assert main(["sweep", str(CONFIGS / "gear_pair.yaml"), *args, "-o", str(out)]) == 2
     assert what in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_the_jam_probability_column(tmp_path, capsys):
+    """--tolerance-samples adds P(jam) with its 95 % interval to every point: a running clearance of
+    0.02 mm diametral, far under the Fortus's ±0.127 mm, jams nearly every simulated print; 0.4 mm
+    jams fewer. Without the option the column stays empty (and on a kind with no tolerance model the option is refused)."""
+    key = "joints.running_clearance_diametral_mm"
+    out = tmp_path / "sweep"
+    assert main(["sweep", str(CONFIGS / "butterfly.yaml"), "--vary", f"{key}=0.02:0.4:2", "--tolerance-samples", "1000",
+                 "--workers", "1", "--check-samples", "8", "-o", str(out)]) == 0
+    rows = list(csv.DictReader((out / "points.csv").open()))
+    assert [float(r[key]) for r in rows] == [0.02, 0.4]
+    p = [float(r["jam_probability"]) for r in rows]
+    lo, hi = [float(r["jam_ci95_low"]) for r in rows], [float(r["jam_ci95_high"]) for r in rows]
+    assert all(a <= x <= b for a, x, b in zip(lo, p, hi)) and all(b - a < 0.1 for a, b in zip(lo, hi))
+    assert p[0] > 0.95 and p[1] < p[0] and hi[1] < lo[0]
+    assert "P(jam)" in (out / "index.html").read_text()
+    capsys.readouterr()
+    plain = tmp_path / "plain"
+    assert main(["sweep", str(CONFIGS / "gear_pair.yaml"), "--vary", "gears.module_mm=2:2.5:2", "--workers", "1",
+                 "--check-samples", "8", "-o", str(plain)]) == 0
+    assert all(r["jam_probability"] == "" for r in csv.DictReader((plain / "points.csv").open()))
