@@ -2,7 +2,8 @@
 
 Statically: nothing in partgen/ imports a package that is neither the standard library nor in
 ``[project.dependencies]``. End to end: build and report (which runs check and trace) run in a
-child process in which the test extras cannot be imported.
+child process in which the test extras cannot be imported: the default chain's build (the
+README's first command), and check (3MF plates), trace and report on the gear pair's kit.
 """
 
 from __future__ import annotations
@@ -78,8 +79,10 @@ def test_commands_run_without_the_test_extras(tmp_path):
             "from partgen.cli.main import main\n"
             f"kit = {str(tmp_path / 'kit')!r}\n"
             f"assert main(['build', {str(ROOT / 'configs' / 'butterfly.yaml')!r}, '-o', kit, '-q']) == 0\n"
-            f"assert main(['report', {str(ROOT / 'configs' / 'butterfly.yaml')!r}, '--samples', '12', '-o', "
-            f"{str(tmp_path / 'report')!r}]) == 0\n")
+            f"pair = {str(tmp_path / 'pair')!r}\n"  # check (3MF plates) and report (check, trace, pictures): the
+            f"assert main(['build', {str(ROOT / 'configs' / 'gear_pair.yaml')!r}, '-o', pair, '-q']) == 0\n"
+            "assert main(['check', pair, '--samples', '12']) == 0\n"  # cheapest kit, the same export code
+            f"assert main(['report', pair, '--samples', '12', '-o', {str(tmp_path / 'report')!r}]) == 0\n")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr[-3000:]
-    assert (tmp_path / "report" / "index.html").stat().st_size > 10_000
+    assert (tmp_path / "report" / "index.html").stat().st_size > 10_000 and list((tmp_path / "pair" / "plates").glob("*.3mf"))

@@ -152,17 +152,22 @@ def test_a_kit_folder_with_a_users_file_is_not_replaced(kit, tmp_path, capsys):
 
 
 def test_unchanged_rebuild_keeps_derived_outputs_a_changed_one_removes_them(tmp_path, capsys):
+    """(on the gear pair, the cheapest kit: what is kept and removed is the same for every mechanism)"""
+    pair = ROOT / "configs" / "gear_pair.yaml"
     dest = tmp_path / "kit"
-    assert main(["build", str(DEFAULT), "-o", str(dest), "-q"]) == 0
+    assert main(["build", str(pair), "-o", str(dest), "-q"]) == 0
     assert main(["check", str(dest), "--samples", "8"]) in (0, 1)
     assert main(["trace", str(dest / "design.yaml"), "--samples", "64", "--plots", str(dest / "trace")]) == 0
     assert (dest / "plates" / MARKER).is_file() and (dest / "trace" / MARKER).is_file()
     capsys.readouterr()
     before = snapshot(dest)
-    assert main(["build", str(DEFAULT), "-o", str(dest), "-q"]) == 0
+    assert main(["build", str(pair), "-o", str(dest), "-q"]) == 0
     assert snapshot(dest) == before, "an unchanged rebuild touched the kit"
     assert "removed" not in capsys.readouterr().err
-    changed = design_copy(tmp_path, plates={"thickness_mm": 4.5, "boss_wall_mm": 4.0})
+    d = yaml.safe_load(pair.read_text())
+    d["base"]["thickness_mm"] += 0.5
+    changed = tmp_path / "design.yaml"
+    changed.write_text(yaml.safe_dump(d, sort_keys=False))
     assert main(["build", str(changed), "-o", str(dest), "-q"]) == 0
     err = capsys.readouterr().err
     assert "partgen: note: removed plates/, trace/" in err, err
