@@ -197,10 +197,25 @@ def test_wrist_report_page(tmp_path, kit_of, prime_kit_cache):
 
     from partgen.cli.main import main
     prime_kit_cache(kit_of("wrist_quasi_ellipsoid"))  # the report builds nothing anew: the session's kit
-    assert main(["report", str(ROOT / "configs" / "wrist_quasi_ellipsoid.yaml"), "-o", str(tmp_path)]) == 0
+    assert main(["report", str(ROOT / "configs" / "wrist_quasi_ellipsoid.yaml"), "--samples", "24", "-o",
+                 str(tmp_path)]) == 0
     text = (tmp_path / "index.html").read_text()
     for heading in ("Design", "Math", "Parts", "Check"):
         assert f">{heading}</h2>" in text
     imgs = re.findall(r'<img src="data:image/png;base64,', text)
     assert len(imgs) >= 4  # the math figure, both gears, the bent pair
     assert "twist play" in text and not re.search(r"""src=["'](https?:|file:)""", text)
+
+
+def test_check_samples_set_the_wrist_poses(kit_of):
+    from partgen.mechanisms.wrist.mechanism import wrist_sampling
+
+    assert wrist_sampling(None) == {}
+    assert wrist_sampling(96) == {"grid": (6, 16), "random_poses": 24, "play_thetas": 4}  # the default's
+    few = wrist_sampling(24)
+    assert few["grid"][0] * few["grid"][1] in range(20, 29) and few["play_thetas"] == 2 and few["random_poses"] == 6
+    many = wrist_sampling(1000)
+    assert 900 <= many["grid"][0] * many["grid"][1] <= 1100 and many["grid"][1] > many["grid"][0]
+    b = kit_of("wrist_quasi_ellipsoid")  # and the check takes them: `check --samples 24` looks at 30 poses
+    res = b.loaded.mechanism.check(b.loaded.spec, b.kit, 24)
+    assert res.figures["poses"] == few["grid"][0] * few["grid"][1] + 6 and len(res.figures["play"]) == 2
