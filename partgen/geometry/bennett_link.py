@@ -94,25 +94,30 @@ class Cup:
         return math.pi * self.pocket_radius ** 2 * self.pocket_depth
 
 
-SHARED_END_INSET_MM = 0.02  # far above float32 resolution at print size (~1e-5 mm), invisible in a print
+# Consecutive bars of a bent bar share an end point, where the capsules are tangent to each
+# other's balls: equal balls leave the same sphere patch in both hulls and the union can pinch
+# (bodies touching at a vertex: not one shell once written; 8 of 603 links of the first 24 Bennett
+# sweep designs). The first bar to reach a point keeps its ball, a later one ends in a ball
+# SHARED_END_INSET_MM smaller, strictly inside it (0 of the 603 pinch).
+SHARED_END_INSET_MM = 0.1  # far above float32 resolution at print size (~1e-5 mm), under a print's
 
 
 def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segments: int = 48) -> m3d.Manifold:
     """A link as one solid: bosses, bars and cups united, then every bore and pocket cut."""
+    return _link_solid(bosses, bars, cups, segments, SHARED_END_INSET_MM)
+
+
+def _link_solid(bosses, bars, cups, segments: int, inset: float) -> m3d.Manifold:
     add = [place_on_axis(m3d.Manifold.cylinder(b.length, b.radius, -1.0, segments, True), np.asarray(b.point, float),
                   np.asarray(b.axis, float), b.offset) for b in bosses]
     owned: set[tuple] = set()
     for bar in bars:
-        # Consecutive bars of a bent bar share an end point. Two equal balls there would leave the
-        # same sphere patch in both hulls, and the union of coincident surfaces can pinch (bodies
-        # touching at a vertex: not one shell once written). The first bar to reach a point keeps its
-        # ball; the next ends in a ball SHARED_END_INSET_MM smaller, strictly inside the first.
         ends = []
         for pt in (bar.p0, bar.p1):
             key = tuple(round(float(x), 9) for x in pt)
-            r = bar.radius - SHARED_END_INSET_MM if key in owned else bar.radius
+            ends.append(m3d.Manifold.sphere(bar.radius - (inset if key in owned else 0.0), segments)
+                        .translate(tuple(map(float, pt))))
             owned.add(key)
-            ends.append(m3d.Manifold.sphere(r, segments).translate(tuple(map(float, pt))))
         add.append(m3d.Manifold.batch_hull(ends))
     for c in cups:
         add.append(place_on_axis(m3d.Manifold.cylinder(c.height, c.outer_radius, -1.0, segments, False), np.asarray(c.point, float),
