@@ -87,6 +87,8 @@ def exact_mesh_overlap(kit: TrainKit, mesh, phases: int, nudge: float = 0.0) -> 
 def _extents(kit: TrainKit) -> dict[str, np.ndarray]:
     out = {}
     for p in kit.parts:
+        if not p.printed:  # bought hardware (a rod, a nut, a set screw) is not printed
+            continue
         v, _ = mesh_arrays(p.solid)
         out[p.name] = v.max(axis=0) - v.min(axis=0)
     return out
