@@ -82,7 +82,7 @@ def turning(kind: str) -> bool:
 
 def _size(table: dict, name: str | None, key: str, what: str) -> tuple[float, float, float]:
     if name not in table:
-        raise HubError(key, f"{name!r} is not a {what} size here: use one of {', '.join(table)}")
+        raise HubError(key, f"{name!r} is not among the {what} sizes here: use one of {', '.join(table)}")
     return table[name]
 
 

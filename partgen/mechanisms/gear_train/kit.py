@@ -36,7 +36,7 @@ from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.hubs import hex_nut, key_ridge, keyway_hole, nut_trap, radial_cylinder, block, square_nut
 from ...geometry.solid import prisms, slab, union
-from .hubs import Hub, HubError, plan_hub, turning
+from .hubs import DIN562_NUTS, ISO4032_NUTS, Hub, HubError, plan_hub, turning
 
 __all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train"]
 
@@ -258,6 +258,13 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
         fits = [plan_hub(b, r_shaft, running, press, wall, gap, d.shafts.nut, d.shafts.set_screw, slack) for b in bores]
     except HubError as e:
         raise ConfigError(loaded.path, f"shafts.{e.key}", e.problem) from None
+
+    def sizes_within(kind: str, what: str, radius: float) -> str:
+        """The nut or set-screw sizes whose feature needs at most ``radius`` (``what``: room or hub_need)."""
+        table = ISO4032_NUTS if kind == "hex" else DIN562_NUTS
+        ok = [m for m in table if getattr(plan_hub(kind, r_shaft, running, press, wall, gap, m, m, slack), what) <= radius]
+        return f" ({', '.join(ok)} would fit)" if ok else " (no size here fits)"
+
     lows = [min(x.layer for x in by_shaft[i]) for i in range(n + 1)]
     # a set screw's hub stands under its lowest gear: raise the layers if a part's hub would be too low
     base = max([0.0] + [h.height - lo * (f + gap) for h, lo in zip(fits, lows)])
@@ -275,6 +282,8 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
             if room >= x.spec.root_radius:
                 what = {"keyway": "its keyway", "hex": f"its {hb.nut} nut trap",
                         "set_screw": f"its {hb.nut} set screw's nut slot"}.get(hb.kind, f"its Ø{2 * bore:.2f} mm bore")
+                if hb.kind in ("hex", "set_screw"):
+                    what += sizes_within(hb.kind, "room", x.spec.root_radius - 1e-9)
                 raise ConfigError(loaded.path, "shafts.diameter_mm" if hb.kind in ("round", "d_flat", "keyway")
                                   else f"shafts.{'nut' if hb.kind == 'hex' else 'set_screw'}",
                                   f"{x.name} ({x.spec.teeth} teeth): its root circle (Ø{2 * x.spec.root_radius:.2f} mm) "
@@ -302,8 +311,9 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
                               else f"shafts.{key}",
                               f"shaft {i}'s hub (under {mine[0].name}) has room for Ø{2 * max(hub, 0):.2f} mm, its "
                               f"{hb.kind.replace('_', ' ')} needs Ø{2 * hb.hub_need:.2f} mm with the printer's {wall:g} mm "
-                              "wall: smaller hardware or a thinner shaft, or turn a stage (train.stages[].angle_deg) to "
-                              "move the neighbouring gears away")
+                              "wall: smaller hardware" + (sizes_within(hb.kind, "hub_need", hub) if hb.kind != "keyway"
+                                                          else "") + " or a thinner shaft, or turn a stage "
+                              "(train.stages[].angle_deg) to move the neighbouring gears away")
         if hub < bore + wall - 1e-9:
             raise ConfigError(loaded.path, "frame.hub_diameter_mm", f"shaft {i}'s hub (under {mine[0].name}) has room for "
                               f"Ø{2 * max(hub, 0):.2f} mm only, less than its Ø{2 * bore:.2f} mm bore and a {wall:g} mm "
