@@ -22,7 +22,7 @@ from ..core.findings import Finding
 
 CLEARANCE_SLACK = 1e-9  # mm: a gap equal to the least clearance (sums of layer heights in floats) passes
 
-__all__ = ["PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
+__all__ = ["ENVELOPE_HEIGHTS", "PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -32,13 +32,18 @@ class PartGeometry:
     slabs: tuple[Slab, ...]
 
 
-def prepare(kit: Kit) -> dict[str, PartGeometry]:
-    """Slabs of every part (each distinct solid sliced once)."""
+ENVELOPE_HEIGHTS = 5  # sections per slab of a twisted part (both faces and three between)
+
+
+def prepare(kit: Kit, twisted: frozenset[str] | set[str] = frozenset(), grow: float = 0.0) -> dict[str, PartGeometry]:
+    """Slabs of every part (each distinct solid sliced once); the parts named in ``twisted`` (helical
+    gears: not z-prisms) as envelopes, each slab the union of its sections at ENVELOPE_HEIGHTS
+    heights grown by ``grow`` mm, so the prism the sweep sees holds the twisted solid."""
     cache: dict[int, tuple[Slab, ...]] = {}
     out = {}
     for p in kit.parts:
         if id(p.solid) not in cache:
-            cache[id(p.solid)] = slabs(p.solid)
+            cache[id(p.solid)] = slabs(p.solid, ENVELOPE_HEIGHTS, grow) if p.name in twisted else slabs(p.solid)
         out[p.name] = PartGeometry(p.name, p.solid, cache[id(p.solid)])
     return out
 
