@@ -360,6 +360,9 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
     reach_p, reach_r = math.pi / zp, math.pi / zr
     h = 3.5 * s.system.module  # the teeth in mesh lie within this of a pitch point
     rr = s.space.pitch_radius
+    # what may turn into a window within a bisection's reach: a point ρ from its axis moves ρ × reach
+    grow_p = min(2 * h, 1.01 * reach_p * s.planet.tip_radius + 0.1)
+    grow_r = min(2 * h, 1.01 * reach_r * (s.space.tip_radius + 0.5 * s.system.module) + 0.1)
     windows = []  # per planet: its centre, the window round the sun's pitch point and the ring's
     for gm in s.angles:
         u = np.array([math.cos(gm), math.sin(gm)])
@@ -372,16 +375,18 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
         c = nominal[k]
         sun = _place(secs["sun"], th - c, (0.0, 0.0))
         ring0 = _place(secs["ring"], s.ring_phase - c, (0.0, 0.0))
+        shapely.prepare(sun)  # indexed once per angle: each planet is tested against it
+        shapely.prepare(ring0)
         row = []
         for i, (pc, w1, w2) in enumerate(windows):
             phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
             planet = _place(secs["planet"], phi, pc)
             # whole outlines: tip and trochoidal interference anywhere
-            out["overlap_mm2"][k, i] = sun.intersection(planet).area
-            out["overlap_mm2"][k, N + i] = ring0.intersection(planet).area
+            out["overlap_mm2"][k, i] = sun.intersection(planet).area if sun.intersects(planet) else 0.0
+            out["overlap_mm2"][k, N + i] = ring0.intersection(planet).area if ring0.intersects(planet) else 0.0
             fixed = shapely.intersection(sun, w1)
             shapely.prepare(fixed)
-            row.append((phi, fixed, shapely.intersection(planet, w1.buffer(2 * h))))
+            row.append((phi, fixed, shapely.intersection(planet, w1.buffer(grow_p))))
         shared.append(row)
     for key, sense in (("drive", 1.0), ("coast", -1.0)):
         # in the carrier frame the sun turns positive, the planets and the ring negative; driven, each
@@ -394,7 +399,7 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
                 phi_act = phi + sense * _contact(fixed, piece, pc, sense, reach_p, tol)
                 planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
                 ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
-                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2.buffer(2 * h))
+                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2.buffer(grow_r))
                 rings.append(ring_nom + sense * _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol))
             # the carrier is held by the planet that bears first: the ring's least lag
             out[key][k] = s.ring_phase - (min(rings) if sense > 0 else max(rings))
