@@ -326,12 +326,31 @@ def _sections(kit: PlanetaryKit) -> dict:
             "ring": shapely.intersection(ring, circle(r_out, 0.05))}
 
 
+def _turner(geom, centre):
+    """``geom`` turned about ``centre`` by an angle (rad): shapely.affinity.rotate's arithmetic, term for
+    term (the same floats), without its per-call set-up — a bisection turns one piece many times."""
+    x, y = shapely.get_coordinates(geom).T
+    x0, y0 = float(centre[0]), float(centre[1])
+
+    def turned(angle: float):
+        cosp, sinp = math.cos(angle), math.sin(angle)
+        if abs(cosp) < 2.5e-16:
+            cosp = 0.0
+        if abs(sinp) < 2.5e-16:
+            sinp = 0.0
+        xoff, yoff = x0 - x0 * cosp + y0 * sinp, y0 - x0 * sinp - y0 * cosp
+        xy = np.stack([cosp * x + -sinp * y + xoff, sinp * x + cosp * y + yoff]).T
+        return shapely.transform(geom, lambda _: xy)
+    return turned
+
+
 def _contact(fixed, piece, centre, sense: float, reach: float, tol: float) -> float:
     """How far (rad, ≥ 0) ``piece`` turns about ``centre`` in the ``sense`` ±1 before it touches ``fixed``."""
     shapely.prepare(fixed)  # indexed once: every step of the bisection tests it
+    turn = _turner(piece, centre)
 
     def area(d: float) -> float:
-        q = shapely.affinity.rotate(piece, sense * d, origin=tuple(centre), use_radians=True)
+        q = turn(sense * d)
         return fixed.intersection(q).area if fixed.intersects(q) else 0.0
     if area(0.0) > 1e-9:
         return 0.0
