@@ -382,11 +382,12 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
     # what may turn into a window within a bisection's reach: a point ρ from its axis moves ρ × reach
     grow_p = min(2 * h, 1.01 * reach_p * s.planet.tip_radius + 0.1)
     grow_r = min(2 * h, 1.01 * reach_r * (s.space.tip_radius + 0.5 * s.system.module) + 0.1)
-    windows = []  # per planet: its centre, the window round the sun's pitch point and the ring's
+    windows = []  # per planet: its centre, the window round the sun's pitch point and the ring's, the ring's grown
     for gm in s.angles:
         u = np.array([math.cos(gm), math.sin(gm)])
+        w2 = box(*(rr * u - h), *(rr * u + h))
         windows.append(((s.centre_distance * u[0], s.centre_distance * u[1]),
-                        box(*(s.sun.pitch_radius * u - h), *(s.sun.pitch_radius * u + h)), box(*(rr * u - h), *(rr * u + h))))
+                        box(*(s.sun.pitch_radius * u - h), *(s.sun.pitch_radius * u + h)), w2, w2.buffer(grow_r)))
     # what both senses share at each angle: the sun's flanks in each window, each planet at its
     # nominal angle and the part of it that meets the sun
     shared = []
@@ -397,7 +398,7 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
         shapely.prepare(sun)  # indexed once per angle: each planet is tested against it
         shapely.prepare(ring0)
         row = []
-        for i, (pc, w1, w2) in enumerate(windows):
+        for i, (pc, w1, w2, _) in enumerate(windows):
             phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
             planet = _place(secs["planet"], phi, pc)
             # whole outlines: tip and trochoidal interference anywhere
@@ -413,12 +414,12 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
         for k, th in enumerate(thetas):
             c = nominal[k]
             rings = []
-            for i, (pc, w1, w2) in enumerate(windows):
+            for i, (pc, w1, w2, w2_grown) in enumerate(windows):
                 phi, fixed, piece = shared[k][i]
                 phi_act = phi + sense * _contact(fixed, piece, pc, sense, reach_p, tol)
                 planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
                 ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
-                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2.buffer(grow_r))
+                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2_grown)
                 rings.append(ring_nom + sense * _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol))
             # the carrier is held by the planet that bears first: the ring's least lag
             out[key][k] = s.ring_phase - (min(rings) if sense > 0 else max(rings))
