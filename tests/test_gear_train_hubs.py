@@ -166,3 +166,12 @@ def test_bad_hub_sizes_are_exit_2_naming_the_key(tmp_path, capsys, change, key):
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["key"] == key, err
     assert not (tmp_path / "out").exists()
+
+
+def test_planetary_sets_refuse_the_train_bores(tmp_path, capsys):
+    from pathlib import Path
+
+    d = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" / "gear_train_planetary.yaml").read_text())
+    d.setdefault("shafts", {})["bores"] = ["keyway", "round"]
+    assert main(["build", _write(tmp_path, d), "-o", str(tmp_path / "out"), "--json"]) == 2
+    assert json.loads(capsys.readouterr().out)["error"]["key"] == "shafts.bores"

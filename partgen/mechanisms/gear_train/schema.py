@@ -145,6 +145,10 @@ class GearTrainDesign(Strict):
         if sum(x is not None for x in (self.train, self.planetary, self.rack)) != 1:
             raise ValueError("[train] give one of: a train of stages (train), a planetary set (planetary), a rack and "
                              "pinion (rack)")
+        if (self.planetary is not None or self.rack is not None) and self.shafts.bores and \
+                set(self.shafts.bores) - {"round", "d_flat"}:
+            raise ValueError("[shafts.bores] keyway, hex and set_screw bores are made for trains of stages (train); a "
+                             "planetary set's and a rack's bores are fixed (round pins, D-flats)")
         if (self.planetary is not None or self.rack is not None) and self.gears.helix_angle_deg:
             raise ValueError("[gears.helix_angle_deg] planetary sets and racks are spur here (helical rings and "
                              "racks are not made)")
