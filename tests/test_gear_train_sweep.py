@@ -83,3 +83,27 @@ def test_an_obstacle_the_twisted_tooth_reaches_is_caught(helical):
     found, figures = sweep(kit, prepare(kit, {"gear"}, TOL), thetas)
     assert [f.check for f in found] == ["interference"] and found[0].value > 0.001
     assert bottom.shape.distance(Point(p.x, p.y)) > 1.0
+
+
+def test_pruning_far_pairs_keeps_the_findings_and_still_sees_a_hit():
+    """sweep(prune=True) on the planetary set: the same findings and gaps as without; with the sun
+    grown into the carrier's pins (a pair that turns about one axis, radii overlapping) both find it."""
+    import dataclasses
+    from pathlib import Path
+
+    from partgen import pipeline
+    from partgen.geometry.solid import slab as prism
+
+    loaded = pipeline.load(Path(__file__).resolve().parents[1] / "configs" / "gear_train_planetary.yaml")
+    kit = loaded.mechanism.build(loaded.spec)
+    thetas = np.linspace(0.0, loaded.spec.output_turn, 36, endpoint=False)
+    plain = sweep(kit, prepare(kit), thetas)
+    pruned = sweep(kit, prepare(kit), thetas, prune=True)
+    assert plain[0] == pruned[0] and plain[1]["gaps"] == pruned[1]["gaps"]
+    s = loaded.spec
+    big = prism(circle(s.centre_distance, 0.05), s.gap + 1.0, s.gap + 2.0)  # a disc out to the pins' axes
+    bad = dataclasses.replace(kit, parts=tuple(dataclasses.replace(p, solid=big) if p.name == "sun" else p
+                                               for p in kit.parts))
+    for prune in (False, True):
+        found, _ = sweep(bad, prepare(bad), thetas, prune=prune)
+        assert any(f.check == "interference" and set(f.parts) == {"sun", "carrier"} for f in found), prune

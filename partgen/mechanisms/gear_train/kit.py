@@ -282,14 +282,13 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
             if room >= x.spec.root_radius:
                 what = {"keyway": "its keyway", "hex": f"its {hb.nut} nut trap",
                         "set_screw": f"its {hb.nut} set screw's nut slot"}.get(hb.kind, f"its Ø{2 * bore:.2f} mm bore")
-                if hb.kind in ("hex", "set_screw"):
-                    what += sizes_within(hb.kind, "room", x.spec.root_radius - 1e-9)
+                fits_ = sizes_within(hb.kind, "room", x.spec.root_radius - 1e-9) if hb.kind in ("hex", "set_screw") else ""
                 raise ConfigError(loaded.path, "shafts.diameter_mm" if hb.kind in ("round", "d_flat", "keyway")
                                   else f"shafts.{'nut' if hb.kind == 'hex' else 'set_screw'}",
                                   f"{x.name} ({x.spec.teeth} teeth): its root circle (Ø{2 * x.spec.root_radius:.2f} mm) "
                                   f"leaves less than the printer's {wall:g} mm wall around {what} (needs a root "
-                                  f"Ø{2 * room:.2f} mm): a thinner shaft or smaller hardware, more teeth or a larger "
-                                  "module")
+                                  f"Ø{2 * room:.2f} mm): a thinner shaft or smaller hardware{fits_}, more teeth or a "
+                                  "larger module")
         if hb.kind == "hex" and hb.pocket_depth + wall > f + (lz(lo) - gap):
             raise ConfigError(loaded.path, "shafts.nut", f"shaft {i}'s {hb.nut} nut trap ({hb.pocket_depth:.2f} mm deep) "
                               f"and a {wall:g} mm wall need a part {hb.pocket_depth + wall:.2f} mm tall: a smaller nut or "
