@@ -22,7 +22,7 @@ from ..core.findings import Finding
 
 CLEARANCE_SLACK = 1e-9  # mm: a gap equal to the least clearance (sums of layer heights in floats) passes
 
-__all__ = ["PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
+__all__ = ["ENVELOPE_HEIGHTS", "PartGeometry", "prepare", "sample_angles", "pose_array", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -32,13 +32,18 @@ class PartGeometry:
     slabs: tuple[Slab, ...]
 
 
-def prepare(kit: Kit) -> dict[str, PartGeometry]:
-    """Slabs of every part (each distinct solid sliced once)."""
+ENVELOPE_HEIGHTS = 5  # sections per slab of a twisted part (both faces and three between)
+
+
+def prepare(kit: Kit, twisted: frozenset[str] | set[str] = frozenset(), grow: float = 0.0) -> dict[str, PartGeometry]:
+    """Slabs of every part (each distinct solid sliced once); the parts named in ``twisted`` (helical
+    gears: not z-prisms) as envelopes, each slab the union of its sections at ENVELOPE_HEIGHTS
+    heights grown by ``grow`` mm, so the prism the sweep sees holds the twisted solid."""
     cache: dict[int, tuple[Slab, ...]] = {}
     out = {}
     for p in kit.parts:
         if id(p.solid) not in cache:
-            cache[id(p.solid)] = slabs(p.solid)
+            cache[id(p.solid)] = slabs(p.solid, ENVELOPE_HEIGHTS, grow) if p.name in twisted else slabs(p.solid)
         out[p.name] = PartGeometry(p.name, p.solid, cache[id(p.solid)])
     return out
 
@@ -73,8 +78,36 @@ class _Worst:
     where_gap: tuple | None = None
 
 
-def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=None) -> tuple[list[Finding], dict]:
-    """Interference and clearance findings over the sampled crank angles, and figures."""
+def _radii(shape, centre) -> tuple[float, float]:
+    """The least and greatest distance (mm) of a section's points from ``centre`` (2,)."""
+    xy = shapely.get_coordinates(shape)
+    far = float(np.hypot(xy[:, 0] - centre[0], xy[:, 1] - centre[1]).max())  # a polygon's farthest point is a vertex
+    return float(shapely.distance(shape, shapely.Point(*centre))), far
+
+
+def _apart(tri, rel: np.ndarray, reach: float) -> np.ndarray:
+    """(K,) bool: slab pairs that can never come within ``reach``: b's origin stays put in a's frame
+    over the motion (b turns about it relative to a: two parts turning about one axis, or one still),
+    so b sweeps the annulus of its own radii about that point, and a's radii about it lie ``reach``
+    or more outside that annulus (|p − q| ≥ ||p − o| − |q − o|| for any p of a and q of b)."""
+    out = np.zeros(len(tri), dtype=bool)
+    fixed = np.all(np.abs(rel[:, :, :3, 3] - rel[:1, :, :3, 3]) < 1e-9, axis=(0, 2)) & \
+        np.all(np.abs(rel[:, :, 2, 2] - 1.0) < 1e-12, axis=0)
+    for k in np.flatnonzero(fixed):
+        _, _, sa, sb, _ = tri[k]
+        o = rel[0, k, :2, 3]
+        a_lo, a_hi = _radii(sa.shape, o)
+        b_lo, b_hi = _radii(sb.shape, (0.0, 0.0))
+        out[k] = max(a_lo - b_hi, b_lo - a_hi) >= reach + 1e-9
+    return out
+
+
+def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=None,
+          prune: bool = False) -> tuple[list[Finding], dict]:
+    """Interference and clearance findings over the sampled crank angles, and figures. ``prune``:
+    leave out of the narrow phase the slab pairs that turn about one axis and whose radii about it
+    stay ``reach`` apart (``_apart``): the same findings, without measuring gaps that cannot matter
+    (the figure ``closest_approach`` then names the closest of the pairs measured)."""
     settings = kit.params.checks
     names = [p.name for p in kit.parts]
     idx = {n: i for i, n in enumerate(names)}
@@ -132,14 +165,19 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                 same[k] = np.all(np.abs(local - local[:1]) < 1e-9)
         bound[1:, same] = np.inf
         hits = np.argwhere(bound < reach)
+        narrow = len(hits)  # the figure: slab pairs × angles the bounding circles let through
+        if prune:
+            hits = hits[~_apart(tri, rel, reach)[hits[:, 1]]]
         placed: dict = {}
+        kept: dict = {}  # the placed slabs of parts that never move (the same pose at every angle)
+        still = np.all(P == P[:1], axis=(0, 2, 3))  # (parts,): bitwise the same pose, so the same placed shape
 
         def shape(n, part, slab):
-            key = (n, part, id(slab))
-            if key not in placed:
-                placed[key] = place2d(slab.shape, P[n, part])
-                shapely.prepare(placed[key])  # indexed: dwithin and intersects on it are fast
-            return placed[key]
+            cache, key = (kept, (part, id(slab))) if still[part] else (placed, (n, part, id(slab)))
+            if key not in cache:
+                cache[key] = place2d(slab.shape, P[n, part])
+                shapely.prepare(cache[key])  # indexed: dwithin and intersects on it are fast
+            return cache[key]
 
         for count, n in enumerate(np.unique(hits[:, 0])):
             if progress:
@@ -233,7 +271,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
                 findings.append(Finding(
                     "clearance", "fail", f"{names[l]} and {names[h_]} are only {dz:.3f} mm apart along z "
                     f"(needs {settings.min_clearance:g} mm)", (names[l], names[h_]), float(thetas[n]), dz, "mm", where))
-    figures = {"samples": len(thetas), "slab_pairs": len(tri), "narrow_phase_2d": int(len(hits)) if tri else 0,
+    figures = {"samples": len(thetas), "slab_pairs": len(tri), "narrow_phase_2d": int(narrow) if tri else 0,
                "exact_3d": tests, "gaps": sorted(gaps, key=lambda g: g["mm"])}
     if closest is not None:
         figures["closest_approach"] = {"mm": round(closest[0], 4), "parts": [closest[1], closest[2]],

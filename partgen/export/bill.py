@@ -98,7 +98,7 @@ def stock_items(purchased: list[dict]) -> list[tuple[str, int, str, list[str]]]:
         else:
             size = ", ".join(f"{k[:-3]} {_g(v)} mm" for k, v in b.items() if k.endswith("_mm") and
                              isinstance(v, (int, float)))
-            add(str(role or name), 1, size, name)
+            add(str(b.get("item") or role or name), 1, size, name)  # "item": what to ask a shop for
     return [(item, q, size, used) for (item, size), (q, used) in items.items()]
 
 

@@ -1,6 +1,7 @@
 """Measuring solids: z-slab sections, exact intersection volumes and gaps (manifold3d), 2-D
 section overlap and distance (shapely). Every part partgen builds is a stack of z-prisms, so its
-slab sections describe it exactly.
+slab sections describe it exactly — but a twisted one (a helical gear), whose slabs are envelopes:
+the union of its sections at several heights of each slab.
 """
 
 from __future__ import annotations
@@ -58,16 +59,34 @@ def section(solid: m3d.Manifold, z: float) -> Polygon | MultiPolygon:
     return to_shapely(solid.slice(z))
 
 
-def slabs(solid: m3d.Manifold) -> tuple[Slab, ...]:
-    """The slabs of a prism-stack solid, bottom to top."""
+ENVELOPE_INSET = 1e-6  # × slab height: a face's section is taken this far inside the slab (a slice on a
+# vertex level is ambiguous)
+
+
+def slabs(solid: m3d.Manifold, heights: int = 1, grow: float = 0.0) -> tuple[Slab, ...]:
+    """The slabs of a solid between its vertex levels, bottom to top. ``heights`` 1: each slab's
+    section at its middle (exact for a prism stack); more: the union of its sections at that many
+    heights spread over the slab, both faces included, grown outward by ``grow`` mm (an envelope of
+    a twisted solid: a helical gear's section turns across each slab of its twisted extrusion, and
+    its facets between the sampled heights stray a little outside them)."""
     v, _ = mesh_arrays(solid)
     levels = np.unique(np.round(v[:, 2], 7))
     out = []
     for z0, z1 in zip(levels[:-1], levels[1:]):
-        cs = solid.slice(float((z0 + z1) / 2))
-        if cs.is_empty():
-            continue
-        shape = to_shapely(cs)
+        if heights <= 1:
+            cs = solid.slice(float((z0 + z1) / 2))
+            if cs.is_empty():
+                continue
+            shape = to_shapely(cs)
+        else:
+            e = ENVELOPE_INSET * (z1 - z0)
+            cuts = [solid.slice(float(z)) for z in np.linspace(z0 + e, z1 - e, heights)]
+            cuts = [to_shapely(c) for c in cuts if not c.is_empty()]
+            if not cuts:
+                continue
+            shape = shapely.union_all(cuts)
+            if grow > 0:
+                shape = shape.buffer(grow, join_style="mitre", mitre_limit=2.0)
         circle = shapely.minimum_bounding_circle(shape)
         c = circle.centroid
         r = float(shapely.minimum_bounding_radius(shape))

@@ -34,7 +34,9 @@ from ...errors import ConfigError, DesignError
 from ...geometry.gear import gear_body, helical_body
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, shaft as shaft_solid
+from ...geometry.hubs import hex_nut, key_ridge, keyway_hole, nut_trap, radial_cylinder, block, square_nut
 from ...geometry.solid import prisms, slab, union
+from .hubs import DIN562_NUTS, ISO4032_NUTS, Hub, HubError, plan_hub, turning
 
 __all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train"]
 
@@ -60,11 +62,12 @@ class Shaft:
 
     index: int
     centre: tuple[float, float]
-    bore: str  # "round" (gear on a fixed pin) or "d_flat" (gear pressed on a turning shaft)
+    bore: str  # "round" (gear on a fixed pin), else the gear fixed on a turning shaft (see hubs.py)
     speed: Fraction
     phase: float
     layers: tuple[int, int]
     hub_radius: float
+    fit: Hub | None = None  # the bore and hub feature (None: the shaft's own, round or d_flat, from the spec)
 
 
 @dataclass(frozen=True)
@@ -118,6 +121,7 @@ class TrainSpec:
     helix: float = 0.0  # rad, at the reference cylinder (0: spur)
     herringbone: bool = False
     normal_module: float = 0.0  # mm (the transverse module × cos helix)
+    base: float = 0.0  # mm: the hub height under the first layer a set screw's hub needs (0: none)
 
     def twist(self, g: TrainGear) -> float:
         """How far (rad, signed) gear ``g``'s section turns from the bottom of its face to the top
@@ -129,7 +133,7 @@ class TrainSpec:
         return max(g.layer for g in self.gears) + 1
 
     def layer_z(self, j: int) -> float:
-        return self.gap + j * (self.face_width + self.gap)
+        return self.gap + self.base + j * (self.face_width + self.gap)
 
     @property
     def top_z(self) -> float:
@@ -143,7 +147,19 @@ class TrainSpec:
     def gear(self, name: str) -> TrainGear:
         return next(g for g in self.gears if g.name == name)
 
+    def hub(self, s: Shaft) -> Hub:
+        """Shaft ``s``'s bore and hub feature."""
+        if s.fit is not None:
+            return s.fit
+        return Hub(s.bore, self.shaft_radius, self.bore_radius(s), 0.0, 0.0)
+
+    def radius(self, s: Shaft) -> float:
+        """Shaft ``s``'s radius (a hex bore's threaded rod: the nut's thread)."""
+        return self.hub(s).radius if s.fit is not None else self.shaft_radius
+
     def bore_radius(self, s: Shaft) -> float:
+        if s.fit is not None:
+            return s.fit.bore
         return self.shaft_radius + (self.running if s.bore == "round" else self.press) / 2
 
     def angle(self, s: Shaft, theta: float) -> float:
@@ -237,17 +253,46 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
                           f"{2 * (FLAT_DEPTH + 1):g} mm")
     wall = printer_limits(p).min_wall
     f, gap = g.face_width_mm, fr.axial_gap_mm
-    lz = lambda j: gap + j * (f + gap)  # noqa: E731
+    try:
+        slack = max(g.chord_tolerance_mm, 0.005) + FEATURE_TOL  # a bore's polygon outside its circle, a hub's inside
+        fits = [plan_hub(b, r_shaft, running, press, wall, gap, d.shafts.nut, d.shafts.set_screw, slack) for b in bores]
+    except HubError as e:
+        raise ConfigError(loaded.path, f"shafts.{e.key}", e.problem) from None
+
+    def sizes_within(kind: str, what: str, radius: float) -> str:
+        """The nut or set-screw sizes whose feature needs at most ``radius`` (``what``: room or hub_need)."""
+        table = ISO4032_NUTS if kind == "hex" else DIN562_NUTS
+        ok = [m for m in table if getattr(plan_hub(kind, r_shaft, running, press, wall, gap, m, m, slack), what) <= radius]
+        return f" ({', '.join(ok)} would fit)" if ok else " (no size here fits)"
+
+    lows = [min(x.layer for x in by_shaft[i]) for i in range(n + 1)]
+    # a set screw's hub stands under its lowest gear: raise the layers if a part's hub would be too low
+    base = max([0.0] + [h.height - lo * (f + gap) for h, lo in zip(fits, lows)])
+    lz = lambda j: gap + base + j * (f + gap)  # noqa: E731
     shafts = []
     for i in range(n + 1):
         mine = by_shaft[i]
         lo, hi = min(x.layer for x in mine), max(x.layer for x in mine)
-        bore = r_shaft + (running if bores[i] == "round" else press) / 2
+        hb = fits[i]
+        bore = hb.bore
         for x in mine:
-            if bore + wall >= x.spec.root_radius:
-                raise ConfigError(loaded.path, "shafts.diameter_mm", f"{x.name} ({x.spec.teeth} teeth): its root circle "
-                                  f"(Ø{2 * x.spec.root_radius:.2f} mm) leaves less than the printer's {wall:g} mm wall "
-                                  f"around its Ø{2 * bore:.2f} mm bore: a thinner shaft, more teeth or a larger module")
+            # a keyway runs through every gear, a nut's trap or slot may reach into the lowest one
+            room = hb.room if hb.kind == "keyway" or (hb.kind in ("hex", "set_screw") and x.layer == lo) \
+                else bore + wall
+            if room >= x.spec.root_radius:
+                what = {"keyway": "its keyway", "hex": f"its {hb.nut} nut trap",
+                        "set_screw": f"its {hb.nut} set screw's nut slot"}.get(hb.kind, f"its Ø{2 * bore:.2f} mm bore")
+                fits_ = sizes_within(hb.kind, "room", x.spec.root_radius - 1e-9) if hb.kind in ("hex", "set_screw") else ""
+                raise ConfigError(loaded.path, "shafts.diameter_mm" if hb.kind in ("round", "d_flat", "keyway")
+                                  else f"shafts.{'nut' if hb.kind == 'hex' else 'set_screw'}",
+                                  f"{x.name} ({x.spec.teeth} teeth): its root circle (Ø{2 * x.spec.root_radius:.2f} mm) "
+                                  f"leaves less than the printer's {wall:g} mm wall around {what} (needs a root "
+                                  f"Ø{2 * room:.2f} mm): a thinner shaft or smaller hardware{fits_}, more teeth or a "
+                                  "larger module")
+        if hb.kind == "hex" and hb.pocket_depth + wall > f + (lz(lo) - gap):
+            raise ConfigError(loaded.path, "shafts.nut", f"shaft {i}'s {hb.nut} nut trap ({hb.pocket_depth:.2f} mm deep) "
+                              f"and a {wall:g} mm wall need a part {hb.pocket_depth + wall:.2f} mm tall: a smaller nut or "
+                              "a wider face (gears.face_width_mm)")
         # the hub and its thrust ring stand from z = 0 to the part's lowest gear: they must clear every
         # other shaft's gear in those layers by the check's clearance
         reach = lz(lo)
@@ -257,15 +302,25 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
                 dist = math.dist(centres[i], centres[other.shaft])
                 limit = min(limit, dist - other.spec.tip_radius - d.checks.min_clearance_mm)
         limit = min(limit, min(x.spec.root_radius for x in mine if x.layer == lo))
-        want = fr.hub_diameter_mm / 2 if fr.hub_diameter_mm else bore + max(3 * wall, 2.5)
+        want = fr.hub_diameter_mm / 2 if fr.hub_diameter_mm else max(bore + max(3 * wall, 2.5), hb.hub_need)
         hub = min(want, limit)
+        if hb.kind != "d_flat" and hb.kind != "round" and lz(lo) > gap + 1e-9 and hub < hb.hub_need - 1e-9:
+            key = {"keyway": "diameter_mm", "hex": "nut", "set_screw": "set_screw"}[hb.kind]
+            raise ConfigError(loaded.path, "frame.hub_diameter_mm" if fr.hub_diameter_mm and limit >= hb.hub_need
+                              else f"shafts.{key}",
+                              f"shaft {i}'s hub (under {mine[0].name}) has room for Ø{2 * max(hub, 0):.2f} mm, its "
+                              f"{hb.kind.replace('_', ' ')} needs Ø{2 * hb.hub_need:.2f} mm with the printer's {wall:g} mm "
+                              "wall: smaller hardware" + (sizes_within(hb.kind, "hub_need", hub) if hb.kind != "keyway"
+                                                          else "") + " or a thinner shaft, or turn a stage "
+                              "(train.stages[].angle_deg) to move the neighbouring gears away")
         if hub < bore + wall - 1e-9:
             raise ConfigError(loaded.path, "frame.hub_diameter_mm", f"shaft {i}'s hub (under {mine[0].name}) has room for "
                               f"Ø{2 * max(hub, 0):.2f} mm only, less than its Ø{2 * bore:.2f} mm bore and a {wall:g} mm "
                               "wall: turn a stage (train.stages[].angle_deg) to move the neighbouring gears away")
         if fr.hub_diameter_mm and fr.hub_diameter_mm / 2 > limit + 1e-9:
             raise ConfigError(loaded.path, "frame.hub_diameter_mm", f"at most {2 * limit:.2f} mm at shaft {i}")
-        shafts.append(Shaft(i, centres[i], bores[i], speeds[i], phases[i], (lo, hi), hub))
+        shafts.append(Shaft(i, centres[i], bores[i], speeds[i], phases[i], (lo, hi), hub,
+                            None if bores[i] in ("round", "d_flat") else hb))
     for i, b in enumerate(bores):
         dia = 2 * (r_shaft + (running if b == "round" else press) / 2)
         if b == "round" and dia < p.min_hole_diameter_mm - 1e-6:
@@ -277,7 +332,7 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
     return TrainSpec(d.name, system, f, tuple(stages), t.ratio, tuple(gears), tuple(shafts), tuple(meshes), r_shaft,
                      running, press, d.shafts.extension_mm, gap, fr.plate_thickness_mm, fr.margin_mm,
                      fr.spacer_diameter_mm / 2, checks, d.material.density_g_cm3 / 1000.0, d.material.name,
-                     printer_limits(p), g.chord_tolerance_mm, beta, g.herringbone, module * math.cos(beta))
+                     printer_limits(p), g.chord_tolerance_mm, beta, g.herringbone, module * math.cos(beta), base)
 
 
 @dataclass(frozen=True)
@@ -299,7 +354,11 @@ class TrainKit(ParamsKit):
         for sh in s.shafts:
             a = s.angle(sh, float(theta))
             out[f"gears{sh.index}"] = pose_z(sh.centre[0], sh.centre[1], 0.0, a)
-            out[f"shaft{sh.index}"] = pose_z(sh.centre[0], sh.centre[1], 0.0, a if sh.bore == "d_flat" else 0.0)
+            out[f"shaft{sh.index}"] = pose_z(sh.centre[0], sh.centre[1], 0.0, a if turning(sh.bore) else 0.0)
+            if sh.bore in ("hex", "set_screw"):  # the bought nut (and screw) turn with the gear part
+                out[f"nut{sh.index}"] = out[f"gears{sh.index}"]
+                if sh.bore == "set_screw":
+                    out[f"set_screw{sh.index}"] = out[f"gears{sh.index}"]
         return out
 
 
@@ -317,10 +376,36 @@ def _spacer_centres(s: TrainSpec) -> list[tuple[float, float]]:
 
 
 def _bore(s: TrainSpec, sh: Shaft):
-    """The gear part's bore: round over a fixed pin, a D over a turning shaft's flat (on local -y)."""
-    if sh.bore == "round":
-        return circle(s.bore_radius(sh), max(s.tol, 0.005), hole=True)
-    return DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005))
+    """The gear part's bore: round over a fixed pin, a D over a turning shaft's flat (on local -y), a
+    round bore with its keyway (on local +y), or round (a nut trap's, a set screw's)."""
+    tol = max(s.tol, 0.005)
+    if sh.bore == "d_flat":
+        return DFit(s.shaft_radius, s.press).hole(tol)
+    if sh.bore == "keyway":
+        h = s.hub(sh)
+        return keyway_hole(h.bore, h.key_half, h.key_floor, tol)
+    return circle(s.bore_radius(sh), tol, hole=True)
+
+
+def _part_span(s: TrainSpec, sh: Shaft) -> tuple[float, float]:
+    """The gear part's bottom and top (z, mm, world): from its thrust ring, or its lowest gear."""
+    lo = s.layer_z(sh.layers[0])
+    return (s.gap if lo > s.gap + 1e-9 else lo), s.layer_z(sh.layers[1]) + s.face_width
+
+
+def _cutters(s: TrainSpec, sh: Shaft) -> list:
+    """What the gear part loses for its hardware: a nut trap in its bottom face, or a set screw's
+    radial hole (on local +x) and its nut's slot open at the bottom face."""
+    h = s.hub(sh)
+    z0, _ = _part_span(s, sh)
+    if h.kind == "hex":
+        return [nut_trap(h.pocket_s, z0, h.pocket_depth)]
+    if h.kind == "set_screw":
+        zc = z0 + h.screw_z
+        return [radial_cylinder((h.thread + s.running) / 2, 0.0, sh.hub_radius + 1.0, zc, FEATURE_TOL),
+                block(h.slot_x0, h.slot_x0 + h.pocket_depth, -h.pocket_s / 2, h.pocket_s / 2, z0 - 1.0,
+                      zc + h.pocket_s / 2)]
+    return []
 
 
 def _gear_part(s: TrainSpec, sh: Shaft) -> Part:
@@ -338,11 +423,57 @@ def _gear_part(s: TrainSpec, sh: Shaft) -> Part:
         r = min(a.spec.root_radius, b.spec.root_radius)
         web.append((circle(r, tol).difference(hole), s.layer_z(a.layer) + s.face_width, s.layer_z(b.layer)))
     solid = union(solids + ([prisms(web)] if web else []))
-    flip = mine[0].layer > 0  # its lowest gear stands on a hub: print it upside down, top gear face on the bed
-    z_lo, z_hi = (s.gap if lo > s.gap + 1e-9 else lo), s.layer_z(mine[-1].layer) + s.face_width
-    pin = 2 * s.shaft_radius if sh.bore == "round" else 2 * (s.shaft_radius - FLAT_DEPTH)
+    cut = _cutters(s, sh)
+    if cut:
+        solid = solid - union(cut)
+    flip = lo > s.gap + 1e-9  # its lowest gear stands on a hub: print it upside down, top gear face on the bed
+    z_lo, z_hi = _part_span(s, sh)
+    pin = 2 * (s.shaft_radius - FLAT_DEPTH) if sh.bore == "d_flat" else 2 * s.radius(sh)
     return Part(f"gears{sh.index}", "gear", solid, print_flip=flip, gear=mine[0].spec if len(mine) == 1 else None,
                 bores=(Bore("shaft", (0.0, 0.0, z_lo), (0.0, 0.0, 1.0), pin, z_hi - z_lo),))
+
+
+def _shaft_parts(s: TrainSpec, sh: Shaft, z_lo: float, z_hi: float) -> list[Part]:
+    """Shaft ``sh`` from under the bottom plate up (a fixed pin to the top plate's top, a turning shaft
+    ``extension`` above it): printed — round, with a D-flat or with its integral key along the gear
+    part — or bought: a hex bore's threaded rod and its nut; a set screw and its square nut."""
+    t, zt, tol = s.plate_thickness, s.top_z, FEATURE_TOL
+    fit, h, name = DFit(s.shaft_radius, 0.0), s.hub(sh), f"shaft{sh.index}"
+    top = zt + t + (s.extension if turning(sh.bore) else 0.0)
+    if sh.bore == "d_flat":  # round in the plates, D under the gear part, round above it through the top plate
+        return [Part(name, "axle", shaft_solid(fit, [("round", -t, z_lo), ("D", z_lo, z_hi), ("round", z_hi, top)], tol))]
+    if sh.bore in ("round", "set_screw"):
+        return [Part(name, "axle", shaft_solid(fit, [("round", -t, top)], tol))]
+    if sh.bore == "keyway":
+        return [Part(name, "axle", union([shaft_solid(fit, [("round", -t, top)], tol),
+                                          key_ridge(h.key_top_half, h.key_top, z_lo, z_hi)]))]
+    if sh.bore == "hex":
+        thread = circle(h.radius, tol)  # the rod and the nut's bore: one polygon, so they touch exactly
+        rod = Part(name, "threaded rod", slab(thread, -t, top), printed=False,
+                   info=(("item", f"{h.nut} threaded rod (DIN 976), cut to length"), ("thread", h.nut),
+                         ("diameter_mm", h.thread), ("length_mm", round(top + t, 1))))
+        nut = Part(f"nut{sh.index}", "nut", hex_nut(h.nut_s, h.nut_m, thread, z_lo), printed=False,
+                   info=(("item", f"{h.nut} hex nut (ISO 4032)"), ("thread", h.nut), ("across_flats_mm", h.nut_s),
+                         ("height_mm", h.nut_m)))
+        return [rod, nut]
+    raise ValueError(f"unknown bore {sh.bore!r}")
+
+
+def _set_screw_parts(s: TrainSpec, sh: Shaft) -> list[Part]:
+    """A set screw's bought parts, posed with the gear part: the screw (from the shaft's surface out,
+    along local +x) and its square nut in the slot."""
+    h = s.hub(sh)
+    z0, _ = _part_span(s, sh)
+    zc = z0 + h.screw_z
+    screw = Part(f"set_screw{sh.index}", "set screw",
+                 radial_cylinder(h.thread / 2, h.radius, h.radius + h.screw_length, zc, FEATURE_TOL), printed=False,
+                 info=(("item", f"{h.nut} × {h.screw_length:g} set screw, flat point (ISO 4026)"), ("thread", h.nut),
+                       ("length_mm", h.screw_length)))
+    x0 = h.slot_x0 + (h.pocket_depth - h.nut_m) / 2
+    nut = Part(f"nut{sh.index}", "nut", square_nut(h.nut_s, h.nut_m, h.thread, x0, zc, FEATURE_TOL), printed=False,
+               info=(("item", f"{h.nut} square nut (DIN 562)"), ("thread", h.nut), ("width_mm", h.nut_s),
+                     ("height_mm", h.nut_m)))
+    return [screw, nut]
 
 
 def build_train(s: TrainSpec, progress=None) -> TrainKit:
@@ -354,7 +485,7 @@ def build_train(s: TrainSpec, progress=None) -> TrainKit:
     discs = [(sh.centre, max(g.spec.tip_radius for g in s.gears if g.shaft == sh.index) + s.margin) for sh in s.shafts]
     discs += [(c, s.spacer_radius + 2.0) for c in spacers]
     outline = hull_of_discs(discs, tol)
-    hole_r = {sh.index: s.shaft_radius + (s.press if sh.bore == "round" else s.running) / 2 for sh in s.shafts}
+    hole_r = {sh.index: s.radius(sh) + (s.press if sh.bore == "round" else s.running) / 2 for sh in s.shafts}
     holes = [circle(hole_r[sh.index], tol, sh.centre, hole=True) for sh in s.shafts]
     bottom = outline
     for h in holes:
@@ -363,41 +494,44 @@ def build_train(s: TrainSpec, progress=None) -> TrainKit:
     rings = [(circle(sh.hub_radius, tol, sh.centre).difference(holes[sh.index]), 0.0, s.gap) for sh in s.shafts]
     columns = [(circle(s.spacer_radius, tol, c), 0.0, zt) for c in spacers]
     pegs = [(circle(peg, tol, c), zt, zt + t) for c in spacers]
-    pin = 2 * s.shaft_radius  # the round part of every shaft runs through both plates
-    down, up = (0.0, 0.0, -1.0), (0.0, 0.0, 1.0)
+    down, up = (0.0, 0.0, -1.0), (0.0, 0.0, 1.0)  # the round part of every shaft runs through both plates
     parts = [Part("frame_bottom", "frame", union([slab(bottom, -t, 0.0), prisms(rings + columns + pegs)]),
-                  bores=tuple(Bore(f"shaft{sh.index}", (sh.centre[0], sh.centre[1], -t), up, pin, t + s.gap)
+                  bores=tuple(Bore(f"shaft{sh.index}", (sh.centre[0], sh.centre[1], -t), up, 2 * s.radius(sh), t + s.gap)
                               for sh in s.shafts))]
     say("frame_top")
     top = outline
     for h in holes + [circle(peg + s.press / 2, tol, c, hole=True) for c in spacers]:
         top = top.difference(h)
     parts.append(Part("frame_top", "frame", slab(top, zt, zt + t),
-                      bores=tuple(Bore(f"shaft{sh.index}", (sh.centre[0], sh.centre[1], zt + t), down, pin, t)
+                      bores=tuple(Bore(f"shaft{sh.index}", (sh.centre[0], sh.centre[1], zt + t), down, 2 * s.radius(sh), t)
                                   for sh in s.shafts)))
     contacts = []
     for sh in s.shafts:
         say(f"gears{sh.index}")
         gp = _gear_part(s, sh)
         parts.append(gp)
-        fit = DFit(s.shaft_radius, 0.0)
-        z_lo = s.gap if sh.layers[0] > 0 else s.layer_z(0)
-        z_hi = s.layer_z(sh.layers[1]) + s.face_width
-        if sh.bore == "round":
-            sections = [("round", -t, zt + t)]
-        else:  # round in the plates, D under the gear part, round above it through the top plate
-            sections = [("round", -t, z_lo), ("D", z_lo, z_hi), ("round", z_hi, zt + t + s.extension)]
+        z_lo, z_hi = _part_span(s, sh)
         say(f"shaft{sh.index}")
-        parts.append(Part(f"shaft{sh.index}", "axle", shaft_solid(fit, sections, tol)))
+        parts += _shaft_parts(s, sh, z_lo, z_hi)
+        if sh.bore == "set_screw":
+            parts += _set_screw_parts(s, sh)
         g, sn = gp.name, f"shaft{sh.index}"
         if sh.bore == "round":
             contacts.append(Contact(g, sn, "running", (z_lo, z_hi), s.running / 2))
             contacts += [Contact(sn, "frame_bottom", "press", (-t, 0.0), s.press / 2),
                          Contact(sn, "frame_top", "press", (zt, zt + t), s.press / 2)]
-        else:
-            contacts.append(Contact(g, sn, "press", (z_lo, z_hi), s.press / 2))
+        else:  # fixed to a turning shaft (a hex bore's rod: held by the nut, its bore a clearance)
+            gap = (s.running if sh.bore == "hex" else s.press) / 2
+            contacts.append(Contact(g, sn, "press", (z_lo, z_hi), gap))
             contacts += [Contact(sn, "frame_bottom", "running", (-t, 0.0), s.running / 2),
                          Contact(sn, "frame_top", "running", (zt, zt + t), s.running / 2)]
         contacts.append(Contact(g, "frame_bottom", "thrust"))
+        if sh.bore == "hex":  # the nut: in its trap, on its rod, on the thrust ring with the gear part
+            contacts += [Contact(f"nut{sh.index}", g, "thrust"), Contact(f"nut{sh.index}", sn, "thrust"),
+                         Contact(f"nut{sh.index}", "frame_bottom", "thrust")]
+        if sh.bore == "set_screw":  # the screw in its hole, through its nut, on the shaft; the nut in its slot
+            n_, c_ = f"nut{sh.index}", f"set_screw{sh.index}"
+            contacts += [Contact(n_, g, "thrust"), Contact(c_, g, "thrust"), Contact(c_, n_, "thrust"),
+                         Contact(c_, sn, "thrust")]
     contacts.append(Contact("frame_top", "frame_bottom", "press", (zt, zt + t), s.press / 2))
     return TrainKit(s, tuple(parts), tuple(contacts), tuple(spacers))

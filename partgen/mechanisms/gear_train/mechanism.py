@@ -33,6 +33,22 @@ def _r6(x) -> float:
     return float(round(float(x), 6))
 
 
+def _hub_summary(spec: TrainSpec, sh) -> dict:
+    """The bore's feature as built (mm): a keyway's slot, a nut trap, a set screw's hole and nut slot."""
+    h = sh.fit
+    if h is None:
+        return {}
+    if h.kind == "keyway":
+        return {"keyway": {"width_mm": _r6(2 * h.key_half), "floor_from_axis_mm": _r6(h.key_floor),
+                           "key_width_mm": _r6(2 * h.key_top_half), "key_top_from_axis_mm": _r6(h.key_top)}}
+    if h.kind == "hex":
+        return {"nut_trap": {"nut": f"{h.nut} ISO 4032", "across_flats_mm": _r6(h.pocket_s), "depth_mm": _r6(h.pocket_depth),
+                             "rod_diameter_mm": _r6(h.thread)}}
+    return {"set_screw": {"screw": f"{h.nut} × {h.screw_length:g} ISO 4026", "hole_diameter_mm": _r6(h.thread + spec.running),
+                          "axis_above_part_bottom_mm": _r6(h.screw_z), "nut": f"{h.nut} DIN 562",
+                          "slot_mm": [_r6(h.pocket_depth), _r6(h.pocket_s)], "slot_inner_face_mm": _r6(h.slot_x0)}}
+
+
 class GearTrain:
     kind = "gear_train"
     title = "gear train"
@@ -40,7 +56,8 @@ class GearTrain:
     motion = Motion("input angle", "rad", (0.0, 2 * math.pi))
     csv_header = "input_rad,output_rad,transmission_error_arcmin,backlash_arcmin\n"
     trace_needs_kit = True
-    role_colours = {"gear": "#4c78a8", "frame": "#8c8c8c", "axle": "#e45756"}
+    role_colours = {"gear": "#4c78a8", "frame": "#8c8c8c", "axle": "#e45756", "threaded rod": "#b0b0b0",
+                    "nut": "#6f6f6f", "set screw": "#3a3a3a"}
 
     def resolve(self, raw: LoadedDesign) -> TrainSpec | PlanetarySpec:
         if raw.design.rack is not None:
@@ -103,7 +120,8 @@ class GearTrain:
                           for st, m in zip(spec.stages, spec.meshes)],
                "shafts": [{"centre_mm": [_r6(c) for c in sh.centre], "bore": sh.bore,
                            "speed": f"{sh.speed.numerator}/{sh.speed.denominator}", "phase_deg": _r6(math.degrees(sh.phase)),
-                           "hub_diameter_mm": _r6(2 * sh.hub_radius)} for sh in spec.shafts],
+                           "hub_diameter_mm": _r6(2 * sh.hub_radius), **_hub_summary(spec, sh)} for sh in spec.shafts],
+               "hub_height_mm": _r6(spec.base),
                "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
                "density_g_cm3": _r6(spec.density * 1000)}
         if spec.helix:

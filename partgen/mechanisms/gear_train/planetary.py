@@ -326,10 +326,31 @@ def _sections(kit: PlanetaryKit) -> dict:
             "ring": shapely.intersection(ring, circle(r_out, 0.05))}
 
 
+def _turner(geom, centre):
+    """``geom`` turned about ``centre`` by an angle (rad): shapely.affinity.rotate's arithmetic, term for
+    term (the same floats), without its per-call set-up — a bisection turns one piece many times."""
+    x, y = shapely.get_coordinates(geom).T
+    x0, y0 = float(centre[0]), float(centre[1])
+
+    def turned(angle: float):
+        cosp, sinp = math.cos(angle), math.sin(angle)
+        if abs(cosp) < 2.5e-16:
+            cosp = 0.0
+        if abs(sinp) < 2.5e-16:
+            sinp = 0.0
+        xoff, yoff = x0 - x0 * cosp + y0 * sinp, y0 - x0 * sinp - y0 * cosp
+        xy = np.stack([cosp * x + -sinp * y + xoff, sinp * x + cosp * y + yoff]).T
+        return shapely.transform(geom, lambda _: xy)
+    return turned
+
+
 def _contact(fixed, piece, centre, sense: float, reach: float, tol: float) -> float:
     """How far (rad, ≥ 0) ``piece`` turns about ``centre`` in the ``sense`` ±1 before it touches ``fixed``."""
+    shapely.prepare(fixed)  # indexed once: every step of the bisection tests it
+    turn = _turner(piece, centre)
+
     def area(d: float) -> float:
-        q = shapely.affinity.rotate(piece, sense * d, origin=tuple(centre), use_radians=True)
+        q = turn(sense * d)
         return fixed.intersection(q).area if fixed.intersects(q) else 0.0
     if area(0.0) > 1e-9:
         return 0.0
@@ -356,32 +377,49 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
     nominal = np.array([s.carrier(float(t)) for t in thetas])
     out = {"nominal": nominal, "drive": np.empty(n), "coast": np.empty(n), "overlap_mm2": np.zeros((n, 2 * N))}
     reach_p, reach_r = math.pi / zp, math.pi / zr
+    h = 3.5 * s.system.module  # the teeth in mesh lie within this of a pitch point
+    rr = s.space.pitch_radius
+    # what may turn into a window within a bisection's reach: a point ρ from its axis moves ρ × reach
+    grow_p = min(2 * h, 1.01 * reach_p * s.planet.tip_radius + 0.1)
+    grow_r = min(2 * h, 1.01 * reach_r * (s.space.tip_radius + 0.5 * s.system.module) + 0.1)
+    windows = []  # per planet: its centre, the window round the sun's pitch point and the ring's, the ring's grown
+    for gm in s.angles:
+        u = np.array([math.cos(gm), math.sin(gm)])
+        w2 = box(*(rr * u - h), *(rr * u + h))
+        windows.append(((s.centre_distance * u[0], s.centre_distance * u[1]),
+                        box(*(s.sun.pitch_radius * u - h), *(s.sun.pitch_radius * u + h)), w2, w2.buffer(grow_r)))
+    # what both senses share at each angle: the sun's flanks in each window, each planet at its
+    # nominal angle and the part of it that meets the sun
+    shared = []
+    for k, th in enumerate(thetas):
+        c = nominal[k]
+        sun = _place(secs["sun"], th - c, (0.0, 0.0))
+        ring0 = _place(secs["ring"], s.ring_phase - c, (0.0, 0.0))
+        shapely.prepare(sun)  # indexed once per angle: each planet is tested against it
+        shapely.prepare(ring0)
+        row = []
+        for i, (pc, w1, w2, _) in enumerate(windows):
+            phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
+            planet = _place(secs["planet"], phi, pc)
+            # whole outlines: tip and trochoidal interference anywhere
+            out["overlap_mm2"][k, i] = sun.intersection(planet).area if sun.intersects(planet) else 0.0
+            out["overlap_mm2"][k, N + i] = ring0.intersection(planet).area if ring0.intersects(planet) else 0.0
+            fixed = shapely.intersection(sun, w1)
+            shapely.prepare(fixed)
+            row.append((phi, fixed, shapely.intersection(planet, w1.buffer(grow_p))))
+        shared.append(row)
     for key, sense in (("drive", 1.0), ("coast", -1.0)):
         # in the carrier frame the sun turns positive, the planets and the ring negative; driven, each
         # lags: it is found turned from its nominal angle against its motion (positive) until it touches
         for k, th in enumerate(thetas):
             c = nominal[k]
-            sun = _place(secs["sun"], th - c, (0.0, 0.0))
             rings = []
-            for i, gm in enumerate(s.angles):
-                pc = (s.centre_distance * math.cos(gm), s.centre_distance * math.sin(gm))
-                u = (math.cos(gm), math.sin(gm))
-                h = 3.5 * s.system.module  # the teeth in mesh lie within this of a pitch point
-                w1 = box(*(s.sun.pitch_radius * np.array(u) - h), *(s.sun.pitch_radius * np.array(u) + h))
-                rr = s.space.pitch_radius
-                w2 = box(*(rr * np.array(u) - h), *(rr * np.array(u) + h))
-                fixed = shapely.intersection(sun, w1)
-                phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
-                planet = _place(secs["planet"], phi, pc)
-                if key == "drive":  # whole outlines: tip and trochoidal interference anywhere
-                    out["overlap_mm2"][k, i] = sun.intersection(planet).area
-                    out["overlap_mm2"][k, N + i] = _place(secs["ring"], s.ring_phase - c, (0.0, 0.0)).intersection(
-                        planet).area
-                piece = shapely.intersection(planet, w1.buffer(2 * h))
+            for i, (pc, w1, w2, w2_grown) in enumerate(windows):
+                phi, fixed, piece = shared[k][i]
                 phi_act = phi + sense * _contact(fixed, piece, pc, sense, reach_p, tol)
                 planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
                 ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
-                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2.buffer(2 * h))
+                ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2_grown)
                 rings.append(ring_nom + sense * _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol))
             # the carrier is held by the planet that bears first: the ring's least lag
             out[key][k] = s.ring_phase - (min(rings) if sense > 0 else max(rings))
@@ -429,7 +467,7 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
         if gear.undercut:
             res.add(Finding("design", "info", f"{name} ({gear.teeth} teeth) is undercut", (name,)))
     geo = prepare(kit)
-    found, motion = sweep(kit, geo, thetas, progress)
+    found, motion = sweep(kit, geo, thetas, progress, prune=True)
     meshing = {frozenset(("sun", f"planet{i}")) for i in range(N)} | {frozenset((f"planet{i}", "frame_bottom"))
                                                                      for i in range(N)}
     dropped = [x for x in found if x.check == "clearance" and frozenset(x.parts) in meshing]

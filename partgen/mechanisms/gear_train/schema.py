@@ -97,9 +97,15 @@ class Shafts(Strict):
     diameter_mm: Length = 8.0
     running_clearance_diametral_mm: Literal["printer"] | Annotated[float, Field(ge=0, le=5)] = "printer"
     press_fit_clearance_diametral_mm: Literal["printer"] | Annotated[float, Field(ge=-1, le=5)] = "printer"
-    # per shaft, input first: round (the gear turns on a fixed pin) or d_flat (pressed on a shaft that
-    # turns in the frame); default d_flat at the input and the output, round between
-    bores: Annotated[list[Literal["round", "d_flat"]], Field(min_length=2, max_length=9)] | None = None
+    # per shaft, input first: round (the gear turns on a fixed pin), or the gear fixed to a shaft that
+    # turns in the frame: d_flat (pressed on a D), keyway (a keyway over the printed shaft's key), hex
+    # (a nut trap: an ISO nut in the hub screws it onto a bought threaded rod) or set_screw (a radial
+    # set screw through the hub into a captive square nut); default d_flat at the input and the output,
+    # round between
+    bores: Annotated[list[Literal["round", "d_flat", "keyway", "hex", "set_screw"]],
+                     Field(min_length=2, max_length=9)] | None = None
+    nut: Annotated[str, Field(min_length=1, max_length=10)] | None = None  # hex bores: the nut and rod, M3–M8
+    set_screw: Annotated[str, Field(min_length=1, max_length=10)] = "M3"  # set_screw bores: the screw, M3–M8
     extension_mm: Gap = 10.0  # how far a turning shaft stands above the top plate
 
 
@@ -139,6 +145,10 @@ class GearTrainDesign(Strict):
         if sum(x is not None for x in (self.train, self.planetary, self.rack)) != 1:
             raise ValueError("[train] give one of: a train of stages (train), a planetary set (planetary), a rack and "
                              "pinion (rack)")
+        if (self.planetary is not None or self.rack is not None) and self.shafts.bores and \
+                set(self.shafts.bores) - {"round", "d_flat"}:
+            raise ValueError("[shafts.bores] keyway, hex and set_screw bores are made for trains of stages (train); a "
+                             "planetary set's and a rack's bores are fixed (round pins, D-flats)")
         if (self.planetary is not None or self.rack is not None) and self.gears.helix_angle_deg:
             raise ValueError("[gears.helix_angle_deg] planetary sets and racks are spur here (helical rings and "
                              "racks are not made)")
