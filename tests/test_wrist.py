@@ -117,10 +117,14 @@ def test_negative_clearance_sockets_interfere():
 
 def test_wrist_check_passes_and_measures_play(built):
     """Zero overlap, teeth engaged everywhere, play bounded in bending and reported in twist
-    (domes hold twist only through the teeth beside the contact: several degrees)."""
-    from partgen.mechanisms.wrist.checks import check_wrist
+    (domes hold twist only through the teeth beside the contact: several degrees); `check
+    --samples 18` looks at about 18 grid poses and 4 random ones, and the play at 3 bends."""
+    from partgen.mechanisms import REGISTRY
+    from partgen.mechanisms.wrist.mechanism import wrist_sampling
     spec, kit = built
-    res = check_wrist(kit, grid=(3, 6), random_poses=4, play_thetas=3)
+    res = REGISTRY["wrist"].check(spec, kit, 18)
+    grid = wrist_sampling(18)["grid"]
+    assert res.figures["poses"] == grid[0] * grid[1] + 4 and 15 <= grid[0] * grid[1] <= 21
     assert res.ok, [f.message for f in res.findings]
     assert res.figures["max_overlap_mm3"] <= 0.01 and res.figures["min_engaged_mm3"] > 1.0
     play = res.figures["play"]
@@ -207,15 +211,12 @@ def test_wrist_report_page(tmp_path, kit_of, prime_kit_cache):
     assert "twist play" in text and not re.search(r"""src=["'](https?:|file:)""", text)
 
 
-def test_check_samples_set_the_wrist_poses(kit_of):
+def test_check_samples_set_the_wrist_poses():
     from partgen.mechanisms.wrist.mechanism import wrist_sampling
 
     assert wrist_sampling(None) == {}
     assert wrist_sampling(96) == {"grid": (6, 16), "random_poses": 24, "play_thetas": 4}  # the default's
     few = wrist_sampling(24)
-    assert few["grid"][0] * few["grid"][1] in range(20, 29) and few["play_thetas"] == 2 and few["random_poses"] == 6
+    assert few["grid"][0] * few["grid"][1] in range(20, 29) and few["play_thetas"] == 3 and few["random_poses"] == 6
     many = wrist_sampling(1000)
     assert 900 <= many["grid"][0] * many["grid"][1] <= 1100 and many["grid"][1] > many["grid"][0]
-    b = kit_of("wrist_quasi_ellipsoid")  # and the check takes them: `check --samples 24` looks at 30 poses
-    res = b.loaded.mechanism.check(b.loaded.spec, b.kit, 24)
-    assert res.figures["poses"] == few["grid"][0] * few["grid"][1] + 6 and len(res.figures["play"]) == 2

@@ -23,14 +23,18 @@ from ...core.transforms import turn_about
 __all__ = ["check_wrist"]
 
 
+PLAY_RESOLUTION_DEG = 0.005  # each direction's free turn is bisected to this (the figures: 0.01°)
+
+
 def _play(g1, g2, T, axis, through, tol, limit=math.radians(20)) -> float:
     total = 0.0
+    steps = math.ceil(math.log2(limit / math.radians(PLAY_RESOLUTION_DEG)))
     for sign in (1, -1):
         lo, hi = 0.0, limit
         if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * hi))[0] <= tol:
             total += hi
             continue
-        for _ in range(18):
+        for _ in range(steps):
             mid = (lo + hi) / 2
             lo, hi = (mid, hi) if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * mid))[0] <= tol else (lo, mid)
         total += lo
@@ -79,8 +83,8 @@ def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: in
         c2 = T[:3, 3]
         twist = _play(g1, g2, T, T[:3, 2], c2, tol)  # about gear 2's own axis: the hand's twist
         bend = _play(g1, g2, T, np.array([0.0, 1.0, 0.0]), c2, tol)
-        rows.append({"theta_deg": round(math.degrees(theta), 3), "twist_play_deg": round(math.degrees(twist), 3),
-                     "bend_play_deg": round(math.degrees(bend), 3)})
+        rows.append({"theta_deg": round(math.degrees(theta), 3), "twist_play_deg": round(math.degrees(twist), 2),
+                     "bend_play_deg": round(math.degrees(bend), 2)})
     res.figures.update(poses=len(poses), grid=list(grid), random=random_poses,
                        max_overlap_mm3=round(worst[0], 6), min_engaged_mm3=round(weakest[0], 4), play=rows,
                        workspace_bend_deg=round(math.degrees(spec.max_bend), 3),

@@ -29,13 +29,13 @@ COLOURS = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b"}
 
 def wrist_sampling(samples: int | None) -> dict:
     """`check --samples N` on a wrist: about N poses on the (θ, ψ) grid in the default's proportion
-    (6 bends × 16 azimuths), N/4 random poses, and the play measured at 4 bends (2 under 96 poses).
+    (6 bends × 16 azimuths), N/4 random poses, and the play measured at 4 bends (3 under 96 poses).
     None: the default (96 grid + 24 random poses, play at 4 bends)."""
     if samples is None:
         return {}
     n_theta = max(2, round(math.sqrt(samples * 6 / 16)))
     n_psi = max(4, round(samples / n_theta))
-    return {"grid": (n_theta, n_psi), "random_poses": samples // 4, "play_thetas": 4 if samples >= 96 else 2}
+    return {"grid": (n_theta, n_psi), "random_poses": samples // 4, "play_thetas": 4 if samples >= 96 else 3}
 
 class Wrist:
     kind = "wrist"
