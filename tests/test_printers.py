@@ -159,10 +159,12 @@ def test_set_is_recorded_and_the_kit_rebuilds_byte_for_byte(tmp_path, capsys):
     found = json.loads(capsys.readouterr().out)
     assert not [f for f in found["findings"] if f["check"] == "kit"], found["findings"]
     assert code == 0
-    # and the comparison can fail: a --set that changes the parts makes the folder stale
-    code = main(["check", str(kit), "--set", "gears.module_mm=1.25", "--samples", "4", "--no-plates", "--json"])
+    # and the comparison can fail: one STL of the folder that is not what the design builds
+    stl = kit / "B3.stl"
+    stl.write_bytes(stl.read_bytes()[:-4] + b"\x01\x00\x00\x00")
+    code = main(["check", str(kit), "--samples", "4", "--no-plates", "--json"])
     found = json.loads(capsys.readouterr().out)
-    assert code == 1 and [f for f in found["findings"] if f["check"] == "kit"]
+    assert code == 1 and [f["parts"] for f in found["findings"] if f["check"] == "kit"] == [["B3"]]
 
 
 def test_printer_option_changes_the_printer_of_every_command(tmp_path, capsys):
