@@ -57,12 +57,12 @@ def test_build_is_byte_identical(default_kit, tmp_path, capsys):
     assert not differ, f"files differ between two builds: {differ}"
 
 
-def test_rebuild_replaces_kit_atomically(default_kit, tmp_path, capsys):
+def test_rebuild_replaces_kit_atomically(default_kit, liu_kit, tmp_path, capsys):
     """A kit of another design in DIR is replaced whole: its parts that the new design lacks go."""
     parent = tmp_path / "parent"
     parent.mkdir()
     kit = parent / "kit"
-    assert main(["build", str(LIU), "-o", str(kit), "-q"]) == 0
+    shutil.copytree(liu_kit[1], kit)  # the paper's kit, as partgen wrote it
     liu_only = set(os.listdir(kit)) - set(os.listdir(default_kit))
     assert liu_only, "the paper's kit should have parts the default lacks"
     assert main(["build", str(DEFAULT), "-o", str(kit), "-q"]) == 0
@@ -73,10 +73,11 @@ def test_rebuild_replaces_kit_atomically(default_kit, tmp_path, capsys):
 
 
 def test_default_output_folder(tmp_path, monkeypatch, capsys):
+    """(on the gear pair, the cheapest kit: out/<name> is the same for every mechanism)"""
     shutil.copytree(CONFIGS, tmp_path / "configs")
     monkeypatch.chdir(tmp_path)
-    name = yaml.safe_load(DEFAULT.read_text())["name"]
-    assert main(["build", "configs/butterfly.yaml", "-q"]) == 0
+    name = yaml.safe_load((CONFIGS / "gear_pair.yaml").read_text())["name"]
+    assert main(["build", "configs/gear_pair.yaml", "-q"]) == 0
     kit = tmp_path / "out" / name
     assert (kit / "manifest.json").is_file() and (kit / "assembly.glb").is_file()
     assert any(p.suffix == ".stl" for p in kit.iterdir())

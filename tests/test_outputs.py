@@ -189,14 +189,15 @@ def _script(*args, **kw):
     return subprocess.Popen([str(SCRIPT), *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
 
 
-def test_two_builds_into_one_fresh_folder_end_with_one_whole_kit(kit, tmp_path):
+def test_two_builds_into_one_fresh_folder_end_with_one_whole_kit(kit_of, tmp_path):
+    """(the gear pair: the race is the same for every mechanism, and its kit the cheapest)"""
     dest = tmp_path / "kit"
-    procs = [_script("build", str(DEFAULT), "-o", str(dest), "-q") for _ in range(2)]
+    procs = [_script("build", str(ROOT / "configs" / "gear_pair.yaml"), "-o", str(dest), "-q") for _ in range(2)]
     results = [p.communicate(timeout=300) + (p.returncode,) for p in procs]
     for out, err, code in results:
         assert code in (0, 2) and "Traceback" not in err, err
     assert any(code == 0 for _, _, code in results)
-    expect = {k: v for k, v in snapshot(kit).items()}
+    expect = {k: v for k, v in snapshot(kit_of("gear_pair").dest).items()}
     assert snapshot(dest) == expect
     assert sorted(os.listdir(tmp_path)) == ["kit"]
 
@@ -225,7 +226,7 @@ def test_a_signal_leaves_the_previous_kit_whole(kit, tmp_path, sig, delay):
 
 
 def test_a_closed_stdout_ends_quietly(tmp_path):
-    proc = _script("build", str(DEFAULT), "-o", str(tmp_path / "kit"))
+    proc = _script("build", str(ROOT / "configs" / "gear_pair.yaml"), "-o", str(tmp_path / "kit"))
     proc.stdout.readline()
     proc.stdout.close()
     err = proc.stderr.read()
