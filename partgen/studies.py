@@ -49,12 +49,19 @@ class ToleranceRun:
     dest: Path | None
 
 
+def modelled_kinds() -> list[str]:
+    """The kinds whose mechanism offers a tolerance model."""
+    from .mechanisms import REGISTRY
+
+    return [k for k, m in REGISTRY.items() if tolerance_hook(m) is not None]
+
+
 def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None):
     """(model, nominal check result, seconds of the check): the kit built once, checked once."""
     hook = tolerance_hook(loaded.mechanism)
     if hook is None:
         raise ConfigError(loaded.path, "kind", f"a {loaded.mechanism.kind} design offers no tolerance study yet "
-                          "(`partgen tolerance` runs on kind: gear_chain)")
+                          f"(`partgen tolerance` runs on kind: {', '.join(modelled_kinds())})")
     kit = pipeline.make_kit(loaded)
     t0 = time.perf_counter()
     result = loaded.mechanism.check(loaded.spec, kit, check_samples, None)
@@ -323,7 +330,7 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     raw = load_design(config, over)  # the design itself must be valid
     if tolerance_samples and tolerance_hook(REGISTRY[raw.design.kind]) is None:
         raise OptionError("--tolerance-samples", str(tolerance_samples), f"a {raw.design.kind} design offers no "
-                          "tolerance study yet (P(jam) is modelled for kind: gear_chain)")
+                          f"tolerance study yet (P(jam) is modelled for kind: {', '.join(modelled_kinds())})")
     for v in vs:
         for x in {v.start, v.stop}:
             val = int(round(x)) if v.integer else x

@@ -49,7 +49,6 @@ def test_sweep_builds_and_checks_every_point(tmp_path, capsys):
     (["--vary", "gears.module_mm=-1:2:3"], "module_mm"),              # outside the schema's range
     (["--vary", "gears.module_mm=1:2:3", "--tolerance-samples", "0"], "tolerance-samples"),
     (["--vary", "gears.module_mm=1:2:3", "--random", "0"], "random"),
-    (["--vary", "gears.module_mm=1:2:3", "--tolerance-samples", "100"], "no tolerance study"),  # not modelled
 ])
 def test_bad_input_writes_nothing(tmp_path, capsys, args, what):
     out = tmp_path / "sweep"
@@ -61,7 +60,7 @@ def test_bad_input_writes_nothing(tmp_path, capsys, args, what):
 def test_the_jam_probability_column(tmp_path, capsys):
     """--tolerance-samples adds P(jam) with its 95 % interval to every point: a running clearance of
     0.02 mm diametral, far under the Fortus's ±0.127 mm, jams nearly every simulated print; 0.4 mm
-    jams fewer. Without the option the column stays empty (and on a kind with no tolerance model the option is refused)."""
+    jams fewer. Without the option the column stays empty."""
     key = "joints.running_clearance_diametral_mm"
     out = tmp_path / "sweep"
     assert main(["sweep", str(CONFIGS / "butterfly.yaml"), "--vary", f"{key}=0.02:0.4:2", "--tolerance-samples", "1000",
@@ -78,3 +77,11 @@ def test_the_jam_probability_column(tmp_path, capsys):
     assert main(["sweep", str(CONFIGS / "gear_pair.yaml"), "--vary", "gears.module_mm=2:2.5:2", "--workers", "1",
                  "--check-samples", "8", "-o", str(plain)]) == 0
     assert all(r["jam_probability"] == "" for r in csv.DictReader((plain / "points.csv").open()))
+
+
+def test_tolerance_samples_on_a_kind_with_no_model_is_refused(tmp_path, capsys):
+    out = tmp_path / "sweep"
+    assert main(["sweep", str(CONFIGS / "wrist_sphere.yaml"), "--vary", "wrist.centre_distance_mm=58:62:2",
+                 "--tolerance-samples", "100", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "--tolerance-samples" in err and "gear_chain, " in err and "gear_pair" in err and not out.exists()

@@ -69,13 +69,14 @@ def _pct(p: float) -> str:
 
 def text(r: dict, dest=None, limit: int = 12) -> str:
     o = r["overall"]
+    w = max([16] + [len(u["unit"]) + 2 for u in r["units"][:limit]])  # the first column fits its longest name
     lines = [f"{r['design']}: {r['samples']:,} simulated prints at ±{r['accuracy_mm']:g} mm ({r['accuracy_source']}), "
              f"{r['features']} printed features, {r['margins']} margins",
              f"P(jam) = {_pct(o['probability'])}  (95 % CI {_pct(o['ci95'][0])} – {_pct(o['ci95'][1])}; "
              f"{o['jams']:,} of {r['samples']:,})", "",
-             f"{'where':<16}{'kind':<10}{'at':<9}{'nominal mm':>11}{'P(jam)':>10}   95 % CI"]
+             f"{'where':<{w}}{'kind':<10}{'at':<9}{'nominal mm':>11}{'P(jam)':>10}   95 % CI"]
     for u in r["units"][:limit]:
-        lines.append(f"{u['unit']:<16}{u['group']:<10}{u['where']:<9}{u['least_nominal_mm']:>11.4f}"
+        lines.append(f"{u['unit']:<{w}}{u['group']:<10}{u['where']:<9}{u['least_nominal_mm']:>11.4f}"
                      f"{_pct(u['probability']):>10}   {_pct(u['ci95'][0])} – {_pct(u['ci95'][1])}")
     if len(r["units"]) > limit:
         lines.append(f"  … {len(r['units']) - limit} more (--json lists all)")

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "MarginModel", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
+__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
            "wilson", "summarise", "chunk_sizes"]
 
 KINDS = ("hole", "pin", "tooth", "position", "outline", "height")
@@ -127,6 +127,37 @@ class MarginModel:
         h.update("|".join(f.name for f in self.features).encode())
         h.update("|".join(f"{m.unit}:{m.what}" for m in self.margins).encode())
         return h.hexdigest()[:16]
+
+
+class ModelBuilder:
+    """A mechanism's margins as they are named: ``add(margin, {(feature name, kind, part): mm of
+    margin per mm of deviation})``, then ``model(accuracy, source)``."""
+
+    def __init__(self):
+        self.features: dict[str, Feature] = {}
+        self.margins: list[Margin] = []
+        self.cols: list[dict[str, float]] = []
+
+    def add(self, margin: Margin, terms: dict[tuple[str, str, str], float]) -> None:
+        col: dict[str, float] = {}
+        for (name, kind, part), c in terms.items():
+            if c == 0.0:
+                continue
+            self.features.setdefault(name, Feature(name, kind, part))
+            col[name] = col.get(name, 0.0) + c
+        self.margins.append(margin)
+        self.cols.append(col)
+
+    def model(self, accuracy: float, source: str) -> MarginModel:
+        feats = tuple(self.features.values())
+        idx = {f.name: i for i, f in enumerate(feats)}
+        coeff = np.zeros((len(feats), len(self.margins)))
+        for k, col in enumerate(self.cols):
+            for name, c in col.items():
+                coeff[idx[name], k] = c
+        sigma = np.array([sigma_of(f.kind, accuracy) for f in feats])
+        nominal = np.array([m.nominal for m in self.margins], dtype=float)
+        return MarginModel(feats, tuple(self.margins), coeff, sigma, nominal, float(accuracy), source)
 
 
 @dataclass(frozen=True)

@@ -24,46 +24,14 @@ a diameter):
 from __future__ import annotations
 
 import math
-from collections import defaultdict
-
 import numpy as np
 
 from ...core.findings import Result
 from ...design.kinematics import link_angles
-from ...design.tolerance import Feature, Margin, MarginModel, sigma_of
+from ...design.tolerance import Margin, MarginModel, ModelBuilder
 from .kit import Kit
 
 __all__ = ["tolerance_model"]
-
-
-class _Builder:
-    """Features and margins as they are named; coefficients as sparse columns."""
-
-    def __init__(self):
-        self.features: dict[str, Feature] = {}
-        self.margins: list[Margin] = []
-        self.cols: list[dict[str, float]] = []
-
-    def add(self, margin: Margin, terms: dict[tuple[str, str, str], float]) -> None:
-        col: dict[str, float] = defaultdict(float)
-        for (name, kind, part), c in terms.items():
-            if c == 0.0:
-                continue
-            self.features.setdefault(name, Feature(name, kind, part))
-            col[name] += c
-        self.margins.append(margin)
-        self.cols.append(col)
-
-    def model(self, accuracy: float, source: str) -> MarginModel:
-        feats = tuple(self.features.values())
-        idx = {f.name: i for i, f in enumerate(feats)}
-        coeff = np.zeros((len(feats), len(self.margins)))
-        for k, col in enumerate(self.cols):
-            for name, c in col.items():
-                coeff[idx[name], k] = c
-        sigma = np.array([sigma_of(f.kind, accuracy) for f in feats])
-        nominal = np.array([m.nominal for m in self.margins], dtype=float)
-        return MarginModel(feats, tuple(self.margins), coeff, sigma, nominal, float(accuracy), source)
 
 
 def _pos(part: str, feature: str) -> tuple[tuple[str, str, str], tuple[str, str, str]]:
@@ -174,7 +142,7 @@ def _pin_of(c) -> tuple[str, str, str, str]:
 def tolerance_model(kit: Kit, result: Result, accuracy_mm: float) -> MarginModel:
     """The margins of ``result`` (the nominal check of ``kit``) as a ``MarginModel`` for a printer
     accuracy of ± ``accuracy_mm``."""
-    b = _Builder()
+    b = ModelBuilder()
     chain = _Chain(kit)
     fits = {tuple(r["parts"]): r for r in result.figures.get("fits", {}).get("rows", [])}
     # running fits

@@ -153,6 +153,12 @@ class GearPair:
         res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
+    def tolerance_model(self, spec: PairSpec, kit: PairKit, result: Result, accuracy_mm: float):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel``."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm)
+
     def trace(self, spec: PairSpec, kit: PairKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """The transmission error over one output revolution from the printed outlines: how far the
         driven gear lags its nominal angle with gear 1's flank against it (rad at the output, and
