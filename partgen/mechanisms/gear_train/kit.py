@@ -38,7 +38,8 @@ from ...geometry.hubs import hex_nut, key_ridge, keyway_hole, nut_trap, radial_c
 from ...geometry.solid import prisms, slab, union
 from .hubs import DIN562_NUTS, ISO4032_NUTS, Hub, HubError, plan_hub, turning
 
-__all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train"]
+__all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train", "hub_cutters",
+           "nut_and_rod", "screw_and_nut"]
 
 FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
 FLAT_DEPTH = 1.0  # mm: a D's flat sits this far inside its circle (geometry.parts.FLAT_DEPTH)
@@ -393,19 +394,26 @@ def _part_span(s: TrainSpec, sh: Shaft) -> tuple[float, float]:
     return (s.gap if lo > s.gap + 1e-9 else lo), s.layer_z(sh.layers[1]) + s.face_width
 
 
-def _cutters(s: TrainSpec, sh: Shaft) -> list:
-    """What the gear part loses for its hardware: a nut trap in its bottom face, or a set screw's
-    radial hole (on local +x) and its nut's slot open at the bottom face."""
-    h = s.hub(sh)
-    z0, _ = _part_span(s, sh)
+def hub_cutters(h: Hub, z0: float, outer: float, running: float, turn: float = 0.0) -> list:
+    """What a part loses for hub ``h``'s hardware, the part's bottom face at ``z0`` (its local frame, the
+    bore on z): a nut trap sunk into that face, or a set screw's radial hole (along local +x turned by
+    ``turn`` rad about z, out to ``outer``) and its nut's slot open at that face."""
     if h.kind == "hex":
         return [nut_trap(h.pocket_s, z0, h.pocket_depth)]
     if h.kind == "set_screw":
         zc = z0 + h.screw_z
-        return [radial_cylinder((h.thread + s.running) / 2, 0.0, sh.hub_radius + 1.0, zc, FEATURE_TOL),
-                block(h.slot_x0, h.slot_x0 + h.pocket_depth, -h.pocket_s / 2, h.pocket_s / 2, z0 - 1.0,
-                      zc + h.pocket_s / 2)]
+        cut = [radial_cylinder((h.thread + running) / 2, 0.0, outer, zc, FEATURE_TOL),
+               block(h.slot_x0, h.slot_x0 + h.pocket_depth, -h.pocket_s / 2, h.pocket_s / 2, z0 - 1.0,
+                     zc + h.pocket_s / 2)]
+        return [c.rotate((0.0, 0.0, math.degrees(turn))) for c in cut] if turn else cut
     return []
+
+
+def _cutters(s: TrainSpec, sh: Shaft) -> list:
+    """What the gear part loses for its hardware: a nut trap in its bottom face, or a set screw's
+    radial hole (on local +x) and its nut's slot open at the bottom face."""
+    z0, _ = _part_span(s, sh)
+    return hub_cutters(s.hub(sh), z0, sh.hub_radius + 1.0, s.running)
 
 
 def _gear_part(s: TrainSpec, sh: Shaft) -> Part:
@@ -448,32 +456,44 @@ def _shaft_parts(s: TrainSpec, sh: Shaft, z_lo: float, z_hi: float) -> list[Part
         return [Part(name, "axle", union([shaft_solid(fit, [("round", -t, top)], tol),
                                           key_ridge(h.key_top_half, h.key_top, z_lo, z_hi)]))]
     if sh.bore == "hex":
-        thread = circle(h.radius, tol)  # the rod and the nut's bore: one polygon, so they touch exactly
-        rod = Part(name, "threaded rod", slab(thread, -t, top), printed=False,
-                   info=(("item", f"{h.nut} threaded rod (DIN 976), cut to length"), ("thread", h.nut),
-                         ("diameter_mm", h.thread), ("length_mm", round(top + t, 1))))
-        nut = Part(f"nut{sh.index}", "nut", hex_nut(h.nut_s, h.nut_m, thread, z_lo), printed=False,
-                   info=(("item", f"{h.nut} hex nut (ISO 4032)"), ("thread", h.nut), ("across_flats_mm", h.nut_s),
-                         ("height_mm", h.nut_m)))
-        return [rod, nut]
+        return nut_and_rod(h, name, f"nut{sh.index}", -t, top, z_lo)
     raise ValueError(f"unknown bore {sh.bore!r}")
+
+
+def nut_and_rod(h: Hub, rod: str, nut: str, z0: float, z1: float, nut_z: float) -> list[Part]:
+    """A hex bore's bought parts: the threaded rod from z0 to z1 and its ISO 4032 nut from ``nut_z`` up
+    (the rod and the nut's bore one polygon, so they touch exactly)."""
+    thread = circle(h.radius, FEATURE_TOL)
+    return [Part(rod, "threaded rod", slab(thread, z0, z1), printed=False,
+                 info=(("item", f"{h.nut} threaded rod (DIN 976), cut to length"), ("thread", h.nut),
+                       ("diameter_mm", h.thread), ("length_mm", round(z1 - z0, 1)))),
+            Part(nut, "nut", hex_nut(h.nut_s, h.nut_m, thread, nut_z), printed=False,
+                 info=(("item", f"{h.nut} hex nut (ISO 4032)"), ("thread", h.nut), ("across_flats_mm", h.nut_s),
+                       ("height_mm", h.nut_m)))]
+
+
+def screw_and_nut(h: Hub, screw: str, nut: str, z0: float, turn: float = 0.0) -> list[Part]:
+    """A set screw's bought parts in the frame of the part it holds (its bottom face at ``z0``): the
+    screw from the shaft's surface out along local +x turned by ``turn`` rad, its square nut in the slot."""
+    zc = z0 + h.screw_z
+    x0 = h.slot_x0 + (h.pocket_depth - h.nut_m) / 2
+    a = radial_cylinder(h.thread / 2, h.radius, h.radius + h.screw_length, zc, FEATURE_TOL)
+    b = square_nut(h.nut_s, h.nut_m, h.thread, x0, zc, FEATURE_TOL)
+    if turn:
+        a, b = (x.rotate((0.0, 0.0, math.degrees(turn))) for x in (a, b))
+    return [Part(screw, "set screw", a, printed=False,
+                 info=(("item", f"{h.nut} × {h.screw_length:g} set screw, flat point (ISO 4026)"), ("thread", h.nut),
+                       ("length_mm", h.screw_length))),
+            Part(nut, "nut", b, printed=False,
+                 info=(("item", f"{h.nut} square nut (DIN 562)"), ("thread", h.nut), ("width_mm", h.nut_s),
+                       ("height_mm", h.nut_m)))]
 
 
 def _set_screw_parts(s: TrainSpec, sh: Shaft) -> list[Part]:
     """A set screw's bought parts, posed with the gear part: the screw (from the shaft's surface out,
     along local +x) and its square nut in the slot."""
-    h = s.hub(sh)
     z0, _ = _part_span(s, sh)
-    zc = z0 + h.screw_z
-    screw = Part(f"set_screw{sh.index}", "set screw",
-                 radial_cylinder(h.thread / 2, h.radius, h.radius + h.screw_length, zc, FEATURE_TOL), printed=False,
-                 info=(("item", f"{h.nut} × {h.screw_length:g} set screw, flat point (ISO 4026)"), ("thread", h.nut),
-                       ("length_mm", h.screw_length)))
-    x0 = h.slot_x0 + (h.pocket_depth - h.nut_m) / 2
-    nut = Part(f"nut{sh.index}", "nut", square_nut(h.nut_s, h.nut_m, h.thread, x0, zc, FEATURE_TOL), printed=False,
-               info=(("item", f"{h.nut} square nut (DIN 562)"), ("thread", h.nut), ("width_mm", h.nut_s),
-                     ("height_mm", h.nut_m)))
-    return [screw, nut]
+    return screw_and_nut(s.hub(sh), f"set_screw{sh.index}", f"nut{sh.index}", z0)
 
 
 def build_train(s: TrainSpec, progress=None) -> TrainKit:
