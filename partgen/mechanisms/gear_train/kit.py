@@ -36,10 +36,11 @@ from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.hubs import hex_nut, key_ridge, keyway_hole, nut_trap, radial_cylinder, block, square_nut
 from ...geometry.solid import prisms, slab, union
-from .hubs import DIN562_NUTS, ISO4032_NUTS, Hub, HubError, plan_hub, turning
+from .hubs import Hub, HubError, plan_hub, turning
+from .hubs import sizes_within as hub_sizes_within
 
 __all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train", "hub_cutters",
-           "nut_and_rod", "screw_and_nut"]
+           "nut_and_rod", "screw_and_nut", "hub_hole", "turning_shaft", "hub_contacts"]
 
 FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
 FLAT_DEPTH = 1.0  # mm: a D's flat sits this far inside its circle (geometry.parts.FLAT_DEPTH)
@@ -262,9 +263,7 @@ def resolve_train(loaded: LoadedDesign) -> TrainSpec:
 
     def sizes_within(kind: str, what: str, radius: float) -> str:
         """The nut or set-screw sizes whose feature needs at most ``radius`` (``what``: room or hub_need)."""
-        table = ISO4032_NUTS if kind == "hex" else DIN562_NUTS
-        ok = [m for m in table if getattr(plan_hub(kind, r_shaft, running, press, wall, gap, m, m, slack), what) <= radius]
-        return f" ({', '.join(ok)} would fit)" if ok else " (no size here fits)"
+        return hub_sizes_within(kind, what, radius, r_shaft, running, press, wall, gap, slack)
 
     lows = [min(x.layer for x in by_shaft[i]) for i in range(n + 1)]
     # a set screw's hub stands under its lowest gear: raise the layers if a part's hub would be too low
@@ -487,6 +486,43 @@ def screw_and_nut(h: Hub, screw: str, nut: str, z0: float, turn: float = 0.0) ->
             Part(nut, "nut", b, printed=False,
                  info=(("item", f"{h.nut} square nut (DIN 562)"), ("thread", h.nut), ("width_mm", h.nut_s),
                        ("height_mm", h.nut_m)))]
+
+
+def hub_hole(h: Hub, press: float, tol: float):
+    """The bore outline (a hole) of a part held by hub ``h`` on a turning shaft: a D (its flat on local
+    -y), round with its keyway on local +y, or round (a nut trap's rod, a set screw's shaft)."""
+    if h.kind == "d_flat":
+        return DFit(h.radius, press).hole(tol)
+    if h.kind == "keyway":
+        return keyway_hole(h.bore, h.key_half, h.key_floor, tol)
+    return circle(h.bore, tol, hole=True)
+
+
+def turning_shaft(h: Hub, name: str, nut: str, z0: float, z1: float, fit: tuple[float, float]) -> list[Part]:
+    """A turning shaft from z0 to z1 for hub ``h`` (not ``d_flat``, whose D the caller lays out), the part
+    it holds spanning ``fit``: printed round (a set screw's), round with its integral key along ``fit``
+    (a keyway's), or a bought threaded rod and its nut at the part's bottom face (a nut trap's)."""
+    tol = FEATURE_TOL
+    round_ = shaft_solid(DFit(h.radius, 0.0), [("round", z0, z1)], tol)
+    if h.kind == "keyway":
+        return [Part(name, "axle", union([round_, key_ridge(h.key_top_half, h.key_top, *fit)]))]
+    if h.kind == "set_screw":
+        return [Part(name, "axle", round_)]
+    if h.kind == "hex":
+        return nut_and_rod(h, name, nut, z0, z1, fit[0])
+    raise ValueError(f"no turning shaft for a {h.kind!r} bore")
+
+
+def hub_contacts(h: Hub, part: str, shaft: str, nut: str, screw: str, seat: str | None) -> list[Contact]:
+    """The bought hardware's contacts with the part it holds and its shaft: a nut in its trap on its
+    rod (resting on ``seat`` when the part stands on one), a set screw in its hole through its nut."""
+    if h.kind == "hex":
+        return [Contact(nut, part, "thrust"), Contact(nut, shaft, "thrust")] + \
+            ([Contact(nut, seat, "thrust")] if seat else [])
+    if h.kind == "set_screw":
+        return [Contact(nut, part, "thrust"), Contact(screw, part, "thrust"), Contact(screw, nut, "thrust"),
+                Contact(screw, shaft, "thrust")]
+    return []
 
 
 def _set_screw_parts(s: TrainSpec, sh: Shaft) -> list[Part]:
