@@ -381,9 +381,8 @@ def _bore(s: TrainSpec, sh: Shaft):
     tol = max(s.tol, 0.005)
     if sh.bore == "d_flat":
         return DFit(s.shaft_radius, s.press).hole(tol)
-    if sh.bore == "keyway":
-        h = s.hub(sh)
-        return keyway_hole(h.bore, h.key_half, h.key_floor, tol)
+    if sh.fit is not None:
+        return hub_hole(sh.fit, s.press, tol)
     return circle(s.bore_radius(sh), tol, hole=True)
 
 
@@ -449,14 +448,9 @@ def _shaft_parts(s: TrainSpec, sh: Shaft, z_lo: float, z_hi: float) -> list[Part
     top = zt + t + (s.extension if turning(sh.bore) else 0.0)
     if sh.bore == "d_flat":  # round in the plates, D under the gear part, round above it through the top plate
         return [Part(name, "axle", shaft_solid(fit, [("round", -t, z_lo), ("D", z_lo, z_hi), ("round", z_hi, top)], tol))]
-    if sh.bore in ("round", "set_screw"):
+    if sh.bore == "round":
         return [Part(name, "axle", shaft_solid(fit, [("round", -t, top)], tol))]
-    if sh.bore == "keyway":
-        return [Part(name, "axle", union([shaft_solid(fit, [("round", -t, top)], tol),
-                                          key_ridge(h.key_top_half, h.key_top, z_lo, z_hi)]))]
-    if sh.bore == "hex":
-        return nut_and_rod(h, name, f"nut{sh.index}", -t, top, z_lo)
-    raise ValueError(f"unknown bore {sh.bore!r}")
+    return turning_shaft(h, name, f"nut{sh.index}", -t, top, (z_lo, z_hi))
 
 
 def nut_and_rod(h: Hub, rod: str, nut: str, z0: float, z1: float, nut_z: float) -> list[Part]:

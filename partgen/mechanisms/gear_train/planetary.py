@@ -8,6 +8,12 @@ gears span [g, g + f]; the sun rests on a thrust ring round the input hole, the 
 (an annulus on the radius of their centres), both [0, g]; the ring stands [0, g + f]; the carrier
 plate spans [Z_c, Z_c + t], Z_c = g + f + g, its pins reach down through the planets; the top plate
 [Z_t, Z_t + t], Z_t = Z_c + t + g, on spacers outside the ring.
+
+Bores (``shafts.bores: [input, output]``, hubs.py): the sun held on its shaft by a D-flat, a keyway, a
+nut trap in its bottom face on a bought threaded rod, or a set screw through a hub under it (then the
+gears, the ring's teeth, the planets' track and the carrier are raised by the hub's height b: the
+gears span [g + b, g + b + f]); the carrier by a D-flat, a keyway, a nut trap in its plate's bottom
+face or a set screw through its plate, out to its rim between two pins.
 """
 
 from __future__ import annotations
@@ -44,7 +50,7 @@ from ...geometry.measure import section
 from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import mesh_arrays, prisms, slab, union
-from .hubs import HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
+from .hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
 from .kit import FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, screw_and_nut, turning_shaft
 
 __all__ = ["PlanetarySpec", "PlanetaryKit", "resolve_planetary", "build_planetary", "check_planetary",
@@ -270,11 +276,16 @@ def _hubs(loaded: LoadedDesign, sun: GearSpec, planet: GearSpec, a: float, angle
                           f"nut{fits(h_out, 'pocket_depth', t - wall)} or frame.plate_thickness_mm "
                           f"≥ {h_out.pocket_depth + wall:.2f}")
     if h_out.kind == "set_screw":
-        need = max(h_out.height, h_out.screw_z + h_out.pocket_s / 2 + wall)  # the hole's wall and the slot's top
+        def plate_need(h: Hub) -> float:  # the hole's wall and the slot's top under the plate's top face
+            return max(h.height, h.screw_z + h.pocket_s / 2 + wall)
+        need = plate_need(h_out)
         if need > t + 1e-9:
+            ok = [m for m in DIN562_NUTS if plate_need(plan_hub("set_screw", r_shaft, running, press, wall, gap, None, m,
+                                                                slack)) <= t + 1e-9]
             raise ConfigError(loaded.path, "frame.plate_thickness_mm", f"the carrier's {h_out.nut} set screw (its hole "
                               f"and its nut's slot in the plate, with a {wall:g} mm wall) needs a plate at least "
-                              f"{need:.2f} mm thick, got {t:g}: a thicker plate or a smaller screw")
+                              f"{need:.2f} mm thick, got {t:g}: a thicker plate or a smaller screw"
+                              + (f" ({', '.join(ok)} would fit)" if ok else " (no size fits this plate)"))
         # the hole runs out to the plate's rim through the widest space between two pins
         gs = sorted(angles)
         k = max(range(len(gs)), key=lambda i: (gs[(i + 1) % len(gs)] - gs[i]) % (2 * math.pi) or 2 * math.pi)

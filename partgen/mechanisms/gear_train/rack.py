@@ -7,6 +7,10 @@ Frame: the pinion's centre at the origin, the rack's pitch line at y = −(r_p +
 turning by θ (counter-clockwise), the pinion moves the rack by r_p θ along +x. z: the base's top at
 0; the pinion and the rack span [g, g + f]; the pinion rests on a thrust ring round its shaft, the
 rack on a strip under its body, both [0, g]; the rail stands [0, g + f].
+
+Bores (``shafts.bores: [pinion]``, hubs.py): a D-flat, a keyway, a nut trap in the pinion's bottom face
+on a bought threaded rod, or a set screw through a hub under it (then the pinion, the rack, its strip
+and the rail are raised by the hub's height b).
 """
 
 from __future__ import annotations
