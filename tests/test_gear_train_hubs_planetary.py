@@ -50,6 +50,19 @@ def _built(tmp_path_factory, design):
 
 
 @pytest.fixture(scope="module")
+def fortus(tmp_path_factory):
+    """The shipped planetary set on the Fortus, its sun on a set screw, its carrier keyed."""
+    from pathlib import Path
+
+    d = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" / "gear_train_planetary.yaml").read_text())
+    d["shafts"]["bores"] = ["set_screw", "keyway"]
+    d["frame"]["plate_thickness_mm"] = 8.0
+    d["checks"]["samples"] = 24
+    d["name"] = "pl_fortus"
+    return _built(tmp_path_factory, d)
+
+
+@pytest.fixture(scope="module")
 def set_hex(tmp_path_factory):
     return _built(tmp_path_factory, SET_HEX)
 
@@ -184,7 +197,7 @@ def test_rack_pinion_set_screw_and_nut_trap(rack_set, rack_hex):
     assert 2 * bore.exterior.distance(Point(0, 0)) == pytest.approx(thread + spec.running, abs=0.03)
 
 
-@pytest.mark.parametrize("which", ["set_hex", "key_set", "rack_set", "rack_hex"])
+@pytest.mark.parametrize("which", ["set_hex", "key_set", "rack_set", "rack_hex", "fortus"])
 def test_the_kits_pass_check_and_buy_their_hardware(request, which):
     spec, kit = request.getfixturevalue(which)
     result = MECHANISM.check(spec, kit, 24)
@@ -200,13 +213,24 @@ def test_the_kits_pass_check_and_buy_their_hardware(request, which):
                                   "nut_out": "M3 square nut (DIN 562)"},
                       "rack_set": {"set_screw": "M3 × 3 set screw, flat point (ISO 4026)", "nut": "M3 square nut (DIN 562)"},
                       "rack_hex": {"shaft": "M5 threaded rod (DIN 976), cut to length",
-                                   "nut": "M5 hex nut (ISO 4032)"}}[which]
+                                   "nut": "M5 hex nut (ISO 4032)"},
+                      "fortus": {"set_screw_in": "M3 × 3 set screw, flat point (ISO 4026)",
+                                 "nut_in": "M3 square nut (DIN 562)"}}[which]
     # the hardware turns with its part
     P = kit.poses(1.0)
     for name in bought:
         holder = {"in": "sun", "out": "carrier"}.get(name.rsplit("_", 1)[-1], "pinion")
         if kit.part(name).role != "threaded rod":
             assert np.allclose(P[name], P[holder])
+    # the manifest's design names each bore and its feature as built
+    summary = MECHANISM.design_summary(spec, kit)
+    bores = summary["bores"] if "bores" in summary else {"pinion": summary["bore"]}
+    assert [b["bore"] for b in bores.values()] == [h.kind for h in (spec.hubs if "bores" in summary else (spec.hub,))]
+    for b in bores.values():
+        if b["bore"] == "hex":
+            assert b["nut_trap"]["across_flats_mm"] == pytest.approx(ISO4032_NUTS["M5"][1] + spec.press)
+        if b["bore"] == "set_screw":
+            assert b["set_screw"]["hole_diameter_mm"] == pytest.approx(3.0 + spec.running)
 
 
 def test_a_nut_off_its_slot_overlaps_the_sun(set_hex):
