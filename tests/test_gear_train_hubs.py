@@ -168,7 +168,9 @@ def test_bad_hub_sizes_are_exit_2_naming_the_key(tmp_path, capsys, change, key):
     assert not (tmp_path / "out").exists()
 
 
-def test_planetary_sets_refuse_the_train_bores(tmp_path, capsys):
+def test_planetary_sets_refuse_a_round_bore(tmp_path, capsys):
+    """A planetary set's input and output shafts turn: ``round`` (a fixed pin) is refused (the other
+    kinds: tests/test_gear_train_hubs_planetary.py)."""
     from pathlib import Path
 
     d = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" / "gear_train_planetary.yaml").read_text())

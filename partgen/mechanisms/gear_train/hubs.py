@@ -24,7 +24,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["ISO4032_NUTS", "DIN562_NUTS", "SET_SCREW_LENGTHS", "Hub", "HubError", "plan_hub", "turning"]
+__all__ = ["ISO4032_NUTS", "DIN562_NUTS", "SET_SCREW_LENGTHS", "Hub", "HubError", "plan_hub", "turning", "sizes_within",
+           "HARDWARE_KEY"]
+
+# the key (under ``shafts``) a bore kind's feature is sized by: the one to name when it does not fit
+HARDWARE_KEY = {"round": "diameter_mm", "d_flat": "diameter_mm", "keyway": "diameter_mm", "hex": "nut",
+                "set_screw": "set_screw"}
 
 # thread Ø, across flats s, height m (mm)
 ISO4032_NUTS = {"M3": (3.0, 5.5, 2.4), "M4": (4.0, 7.0, 3.2), "M5": (5.0, 8.0, 4.7), "M6": (6.0, 10.0, 5.2),
@@ -135,3 +140,14 @@ def plan_hub(kind: str, r: float, running: float, press: float, wall: float, gap
                    thread=d, pocket_s=pocket, pocket_depth=m + press, slot_x0=x0, screw_z=z, screw_length=length,
                    nut_lift=lift)
     raise HubError("bores", f"unknown bore {kind!r}")
+
+
+def sizes_within(kind: str, what: str, radius: float, r: float, running: float, press: float, wall: float, gap: float,
+                 slack: float = 0.0) -> str:
+    """The nut or set-screw sizes of a ``hex`` or ``set_screw`` bore whose ``what`` (``room`` or
+    ``hub_need``) is at most ``radius``, as a clause for a message ("" for other kinds)."""
+    if kind not in ("hex", "set_screw"):
+        return ""
+    table = ISO4032_NUTS if kind == "hex" else DIN562_NUTS
+    ok = [m for m in table if getattr(plan_hub(kind, r, running, press, wall, gap, m, m, slack), what) <= radius]
+    return f" ({', '.join(ok)} would fit)" if ok else " (no size here fits)"

@@ -33,10 +33,10 @@ def _r6(x) -> float:
     return float(round(float(x), 6))
 
 
-def _hub_summary(spec: TrainSpec, sh) -> dict:
-    """The bore's feature as built (mm): a keyway's slot, a nut trap, a set screw's hole and nut slot."""
-    h = sh.fit
-    if h is None:
+def _hub_summary(h, running: float) -> dict:
+    """The bore's feature as built (mm): a keyway's slot, a nut trap, a set screw's hole and nut slot
+    (``h``: a hubs.Hub, or None for a round or D-flat bore; ``running``: the diametral running clearance)."""
+    if h is None or h.kind in ("round", "d_flat"):
         return {}
     if h.kind == "keyway":
         return {"keyway": {"width_mm": _r6(2 * h.key_half), "floor_from_axis_mm": _r6(h.key_floor),
@@ -44,7 +44,7 @@ def _hub_summary(spec: TrainSpec, sh) -> dict:
     if h.kind == "hex":
         return {"nut_trap": {"nut": f"{h.nut} ISO 4032", "across_flats_mm": _r6(h.pocket_s), "depth_mm": _r6(h.pocket_depth),
                              "rod_diameter_mm": _r6(h.thread)}}
-    return {"set_screw": {"screw": f"{h.nut} × {h.screw_length:g} ISO 4026", "hole_diameter_mm": _r6(h.thread + spec.running),
+    return {"set_screw": {"screw": f"{h.nut} × {h.screw_length:g} ISO 4026", "hole_diameter_mm": _r6(h.thread + running),
                           "axis_above_part_bottom_mm": _r6(h.screw_z), "nut": f"{h.nut} DIN 562",
                           "slot_mm": [_r6(h.pocket_depth), _r6(h.pocket_s)], "slot_inner_face_mm": _r6(h.slot_x0)}}
 
@@ -120,7 +120,7 @@ class GearTrain:
                           for st, m in zip(spec.stages, spec.meshes)],
                "shafts": [{"centre_mm": [_r6(c) for c in sh.centre], "bore": sh.bore,
                            "speed": f"{sh.speed.numerator}/{sh.speed.denominator}", "phase_deg": _r6(math.degrees(sh.phase)),
-                           "hub_diameter_mm": _r6(2 * sh.hub_radius), **_hub_summary(spec, sh)} for sh in spec.shafts],
+                           "hub_diameter_mm": _r6(2 * sh.hub_radius), **_hub_summary(sh.fit, spec.running)} for sh in spec.shafts],
                "hub_height_mm": _r6(spec.base),
                "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
                "density_g_cm3": _r6(spec.density * 1000)}
@@ -339,18 +339,26 @@ def _planetary_summary(spec: PlanetarySpec) -> dict:
     if spec.target_ratio is not None:
         out["target_ratio"] = spec.target_ratio
         out["ratio_error"] = _r6(t.ratio / spec.target_ratio - 1)
+    if spec.hubs is not None:
+        out["bores"] = {end: {"bore": h.kind, **_hub_summary(h, spec.running)}
+                        for end, h in zip(("input", "output"), spec.hubs)}
+        out.update(hub_height_mm=_r6(spec.base), sun_hub_diameter_mm=_r6(2 * spec.hub_radius))
     return out
 
 
 def _rack_summary(spec: RackSpec) -> dict:
     p = spec.pinion
-    return {"name": spec.name, "kind": "gear_train", "arrangement": "rack and pinion",
-            "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
-            "face_width_mm": spec.face_width, "pinion_teeth": p.teeth, "pinion_profile_shift": _r6(p.profile_shift),
-            "rack_teeth": spec.rack_teeth, "rack_length_mm": _r6(spec.rack_length), "travel_mm": spec.travel,
-            "mm_per_rad": _r6(p.pitch_radius), "pitch_line_y_mm": _r6(spec.pitch_line),
-            "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
-            "density_g_cm3": _r6(spec.density * 1000)}
+    out = {"name": spec.name, "kind": "gear_train", "arrangement": "rack and pinion",
+           "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
+           "face_width_mm": spec.face_width, "pinion_teeth": p.teeth, "pinion_profile_shift": _r6(p.profile_shift),
+           "rack_teeth": spec.rack_teeth, "rack_length_mm": _r6(spec.rack_length), "travel_mm": spec.travel,
+           "mm_per_rad": _r6(p.pitch_radius), "pitch_line_y_mm": _r6(spec.pitch_line),
+           "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
+           "density_g_cm3": _r6(spec.density * 1000)}
+    if spec.hub is not None:
+        out.update(bore={"bore": spec.hub.kind, **_hub_summary(spec.hub, spec.running)}, hub_height_mm=_r6(spec.base),
+                   hub_diameter_mm=_r6(2 * spec.hub_radius))
+    return out
 
 
 def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray, unit: str = "arcmin at the output"

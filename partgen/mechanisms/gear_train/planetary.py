@@ -8,6 +8,12 @@ gears span [g, g + f]; the sun rests on a thrust ring round the input hole, the 
 (an annulus on the radius of their centres), both [0, g]; the ring stands [0, g + f]; the carrier
 plate spans [Z_c, Z_c + t], Z_c = g + f + g, its pins reach down through the planets; the top plate
 [Z_t, Z_t + t], Z_t = Z_c + t + g, on spacers outside the ring.
+
+Bores (``shafts.bores: [input, output]``, hubs.py): the sun held on its shaft by a D-flat, a keyway, a
+nut trap in its bottom face on a bought threaded rod, or a set screw through a hub under it (then the
+gears, the ring's teeth, the planets' track and the carrier are raised by the hub's height b: the
+gears span [g + b, g + b + f]); the carrier by a D-flat, a keyway, a nut trap in its plate's bottom
+face or a set screw through its plate, out to its rim between two pins.
 """
 
 from __future__ import annotations
@@ -44,7 +50,8 @@ from ...geometry.measure import section
 from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import mesh_arrays, prisms, slab, union
-from .kit import FEATURE_TOL, Contact
+from .hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
+from .kit import FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, screw_and_nut, turning_shaft
 
 __all__ = ["PlanetarySpec", "PlanetaryKit", "resolve_planetary", "build_planetary", "check_planetary",
            "turn_planetary"]
@@ -82,14 +89,33 @@ class PlanetarySpec:
     material: str
     printer: PrinterLimits
     tol: float
+    hubs: tuple[Hub, Hub] | None = None  # the input (sun) and output (carrier) bores; None: D-flats
+    base: float = 0.0  # the sun's set-screw hub under its gear: every gear raised by it (mm)
+    hub_radius: float = 0.0  # the sun's hub (mm; 0: none)
+    screw_turn: float = 0.0  # the carrier's set screw: its hole's direction (rad), between two pins
 
     @property
     def ratio(self) -> float:
         return self.teeth.ratio
 
     @property
+    def bores(self) -> tuple[str, str]:
+        return (self.hubs[0].kind, self.hubs[1].kind) if self.hubs else ("d_flat", "d_flat")
+
+    @property
+    def gear_z(self) -> float:
+        """The gears' bottom face (z, mm)."""
+        return self.gap + self.base
+
+    @property
+    def track_width(self) -> float:
+        """Half the width of the planets' track on the bottom plate (mm)."""
+        return min(self.pin_radius + self.running / 2 + 2 * self.printer.min_wall,
+                   self.planet.pitch_radius - self.system.module - self.checks.min_clearance)
+
+    @property
     def carrier_z(self) -> float:
-        return 2 * self.gap + self.face_width
+        return 2 * self.gap + self.face_width + self.base
 
     @property
     def top_z(self) -> float:
@@ -186,6 +212,7 @@ def resolve_planetary(loaded: LoadedDesign) -> PlanetarySpec:
     if r_shaft + press / 2 + wall >= sun.root_radius:
         raise ConfigError(loaded.path, "shafts.diameter_mm", f"a {zs}-tooth sun (root Ø{2 * sun.root_radius:.2f} mm) "
                           f"leaves no {wall:g} mm wall round its D-bore: a thinner shaft or a larger sun")
+    hubs, base, hub_r, turn = _hubs(loaded, sun, planet, a, angles, r_shaft, r_pin, running, press, wall)
     c = d.checks
     checks = CheckSettings(c.samples, c.interference_tolerance_mm3, c.min_clearance_mm, c.min_contact_ratio,
                            c.min_tip_width_roads, c.plate_margin_mm)
@@ -193,7 +220,83 @@ def resolve_planetary(loaded: LoadedDesign) -> PlanetarySpec:
                          angles, phases, ring_phase, pl.ratio, r_shaft, r_pin, running, press, d.shafts.extension_mm,
                          fr.axial_gap_mm, fr.plate_thickness_mm, fr.margin_mm, fr.spacer_diameter_mm / 2, pl.rim_mm,
                          checks, d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p),
-                         g.chord_tolerance_mm)
+                         g.chord_tolerance_mm, hubs, base, hub_r, turn)
+
+
+def _hubs(loaded: LoadedDesign, sun: GearSpec, planet: GearSpec, a: float, angles, r_shaft: float, r_pin: float,
+          running: float, press: float, wall: float):
+    """The input (sun) and output (carrier) bores from ``shafts.bores``, and where they need it the sun's
+    hub under its gear (its height, the gears raised by it, and radius) and the carrier's set-screw
+    direction. None (D-flats, as built before bores were given) when ``shafts.bores`` is absent."""
+    d, fr, g = loaded.design, loaded.design.frame, loaded.design.gears
+    if not d.shafts.bores:
+        return None, 0.0, 0.0, 0.0
+    gap, t, f = fr.axial_gap_mm, fr.plate_thickness_mm, g.face_width_mm
+    slack = max(g.chord_tolerance_mm, 0.005) + FEATURE_TOL
+    try:
+        hubs = tuple(plan_hub(b, r_shaft, running, press, wall, gap, d.shafts.nut, d.shafts.set_screw, slack)
+                     for b in d.shafts.bores)
+    except HubError as e:
+        raise ConfigError(loaded.path, f"shafts.{e.key}", e.problem) from None
+    h_in, h_out = hubs
+    fits = lambda h, what, radius: sizes_within(h.kind, what, radius, r_shaft, running, press, wall, gap, slack)  # noqa: E731
+    key = lambda h: f"shafts.{HARDWARE_KEY[h.kind]}"  # noqa: E731
+    what = lambda h: {"keyway": "its keyway", "hex": f"its {h.nut} nut trap", "d_flat": "its D-bore",  # noqa: E731
+                      "set_screw": f"its {h.nut} set screw's nut slot"}[h.kind]
+    # the sun: every feature within its root circle and a printer wall
+    if h_in.kind != "d_flat" and h_in.room >= sun.root_radius:
+        raise ConfigError(loaded.path, key(h_in), f"a {sun.teeth}-tooth sun (root Ø{2 * sun.root_radius:.2f} mm) leaves "
+                          f"less than the printer's {wall:g} mm wall around {what(h_in)} (needs a root Ø"
+                          f"{2 * h_in.room:.2f} mm): a thinner shaft or smaller hardware{fits(h_in, 'room', sun.root_radius)}"
+                          ", or a larger sun")
+    if h_in.kind == "hex" and h_in.pocket_depth + wall > f:
+        raise ConfigError(loaded.path, "shafts.nut", f"the sun's {h_in.nut} nut trap ({h_in.pocket_depth:.2f} mm deep) and "
+                          f"a {wall:g} mm wall need a face {h_in.pocket_depth + wall:.2f} mm wide: a smaller nut"
+                          f"{fits(h_in, 'pocket_depth', f - wall)} or a wider face (gears.face_width_mm)")
+    base, hub_r = 0.0, 0.0
+    if h_in.kind == "set_screw":  # a hub under the sun, inside the planets' track, the gears raised over it
+        base = h_in.height
+        track = min(r_pin + running / 2 + 2 * wall, planet.pitch_radius - g.module_mm - d.checks.min_clearance_mm)
+        limit = min(sun.root_radius, a - track - d.checks.min_clearance_mm)
+        hub_r = min(max(h_in.bore + max(3 * wall, 2.5), h_in.hub_need), limit)
+        if hub_r < h_in.hub_need - 1e-9:
+            raise ConfigError(loaded.path, "shafts.set_screw", f"the sun's hub has room for Ø{2 * limit:.2f} mm inside "
+                              f"the planets' track, its {h_in.nut} set screw needs Ø{2 * h_in.hub_need:.2f} mm: a smaller "
+                              f"screw{fits(h_in, 'hub_need', limit)}, a thinner shaft or a larger sun")
+    # the carrier: its plate holds the feature (a nut trap or a set screw's hole and slot within its thickness)
+    plate_r = a + r_pin + running / 2 + 2 * wall
+    if h_out.room >= plate_r:
+        raise ConfigError(loaded.path, key(h_out), f"the carrier's plate (Ø{2 * plate_r:.2f} mm) leaves less than the "
+                          f"printer's {wall:g} mm wall around {what(h_out)}: a thinner shaft or smaller hardware"
+                          f"{fits(h_out, 'room', plate_r)}")
+    turn = 0.0
+    if h_out.kind == "hex" and h_out.pocket_depth + wall > t:
+        raise ConfigError(loaded.path, "shafts.nut", f"the carrier's {h_out.nut} nut trap ({h_out.pocket_depth:.2f} mm "
+                          f"deep) and a {wall:g} mm wall need a plate {h_out.pocket_depth + wall:.2f} mm thick: a smaller "
+                          f"nut{fits(h_out, 'pocket_depth', t - wall)} or frame.plate_thickness_mm "
+                          f"≥ {h_out.pocket_depth + wall:.2f}")
+    if h_out.kind == "set_screw":
+        def plate_need(h: Hub) -> float:  # the hole's wall and the slot's top under the plate's top face
+            return max(h.height, h.screw_z + h.pocket_s / 2 + wall)
+        need = plate_need(h_out)
+        if need > t + 1e-9:
+            ok = [m for m in DIN562_NUTS if plate_need(plan_hub("set_screw", r_shaft, running, press, wall, gap, None, m,
+                                                                slack)) <= t + 1e-9]
+            raise ConfigError(loaded.path, "frame.plate_thickness_mm", f"the carrier's {h_out.nut} set screw (its hole "
+                              f"and its nut's slot in the plate, with a {wall:g} mm wall) needs a plate at least "
+                              f"{need:.2f} mm thick, got {t:g}: a thicker plate or a smaller screw"
+                              + (f" ({', '.join(ok)} would fit)" if ok else " (no size fits this plate)"))
+        # the hole runs out to the plate's rim through the widest space between two pins
+        gs = sorted(angles)
+        k = max(range(len(gs)), key=lambda i: (gs[(i + 1) % len(gs)] - gs[i]) % (2 * math.pi) or 2 * math.pi)
+        span = (gs[(k + 1) % len(gs)] - gs[k]) % (2 * math.pi) or 2 * math.pi
+        turn = gs[k] + span / 2
+        miss = a * math.sin(span / 2) - r_pin - (h_out.thread + running) / 2
+        if miss < wall:
+            raise ConfigError(loaded.path, "shafts.set_screw", f"the carrier's {h_out.nut} set-screw hole passes its pins "
+                              f"{max(miss, 0):.2f} mm apart, under the printer's {wall:g} mm wall: fewer planets or a "
+                              "smaller screw")
+    return hubs, base, hub_r, turn
 
 
 @dataclass(frozen=True)
@@ -213,6 +316,10 @@ class PlanetaryKit(ParamsKit):
                "shaft_in": pose_z(angle=float(theta)), "carrier": pose_z(angle=c), "shaft_out": pose_z(angle=c)}
         for i in range(len(s.angles)):
             out[f"planet{i}"] = pose_z(*s.planet_centre(i, theta), 0.0, s.planet_angle(i, theta))
+        for end, part in (("in", "sun"), ("out", "carrier")):  # bought nuts and screws turn with their part
+            for n in (f"nut_{end}", f"set_screw_{end}"):
+                if any(p.name == n for p in self.parts):
+                    out[n] = out[part]
         return out
 
 
@@ -225,10 +332,12 @@ def build_planetary(s: PlanetarySpec, progress=None) -> PlanetaryKit:
     say = progress or (lambda name: None)
     tol = FEATURE_TOL
     g, f, t, zc, zt = s.gap, s.face_width, s.plate_thickness, s.carrier_z, s.top_z
+    gz = s.gear_z  # the gears' bottom face (g, or over the sun's set-screw hub)
     spacers = _spacers(s)
     peg = s.spacer_radius / 2
     wall = s.printer.min_wall
-    in_hole = s.shaft_radius + s.running / 2
+    h_in, h_out = s.hubs or (None, None)
+    in_hole = (h_in.radius if h_in else s.shaft_radius) + s.running / 2
     # the bottom plate is turned by the ring's phase (poses): its features are placed in its own frame
     rot = lambda p: (p[0] * math.cos(-s.ring_phase) - p[1] * math.sin(-s.ring_phase),  # noqa: E731
                      p[0] * math.sin(-s.ring_phase) + p[1] * math.cos(-s.ring_phase))
@@ -238,49 +347,78 @@ def build_planetary(s: PlanetarySpec, progress=None) -> PlanetaryKit:
     sun_ring = circle(min(s.sun.root_radius - 0.5, in_hole + max(2 * wall, 2.0)), tol).difference(
         circle(in_hole, tol, hole=True))
     # the planets' track: under their faces, clear of the sun's and the ring's tips
-    track_w = min(s.pin_radius + s.running / 2 + 2 * wall, s.planet.pitch_radius - s.system.module - s.checks.min_clearance)
+    track_w = s.track_width
     track = circle(s.centre_distance + track_w, tol).difference(circle(s.centre_distance - track_w, tol))
     bottom = union([slab(outline.difference(circle(in_hole, tol, hole=True)), -t, 0.0),
-                    ring_body(s.space, s.rim_radius, g + f, 0.0),
-                    prisms([(sun_ring, 0.0, g), (track, 0.0, g)]
+                    ring_body(s.space, s.rim_radius, gz + f, 0.0),
+                    prisms([(sun_ring, 0.0, g), (track, 0.0, gz)]
                            + [(circle(s.spacer_radius, tol, c), 0.0, zt) for c in sp_local]
                            + [(circle(peg, tol, c), zt, zt + t) for c in sp_local])])
     parts = [Part("frame_bottom", "frame", bottom)]
     say("frame_top")
-    top = outline.difference(circle(s.shaft_radius + s.running / 2, tol, hole=True))
+    top = outline.difference(circle((h_out.radius if h_out else s.shaft_radius) + s.running / 2, tol, hole=True))
     for c in spacers:
         top = top.difference(circle(peg + s.press / 2, tol, c, hole=True))
     parts.append(Part("frame_top", "frame", slab(top, zt, zt + t)))
     say("sun")
-    d_hole = DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005))
-    parts.append(Part("sun", "gear", gear_body(s.sun, f, d_hole, g), gear=s.sun))
-    parts.append(Part("shaft_in", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("round", -t - s.extension, g),
-                                                                                   ("D", g, g + f)], tol)))
+    if h_in is None or h_in.kind == "d_flat":
+        d_hole = DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005))
+        parts.append(Part("sun", "gear", gear_body(s.sun, f, d_hole, g), gear=s.sun))
+        parts.append(Part("shaft_in", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("round", -t - s.extension, g),
+                                                                                       ("D", g, g + f)], tol)))
+    else:
+        hole = hub_hole(h_in, s.press, max(s.tol, 0.005))
+        sun = gear_body(s.sun, f, hole, gz)
+        if s.base:  # its set screw's hub, from its thrust ring up to the gear
+            sun = union([sun, prisms([(circle(s.hub_radius, tol).difference(hole), g, gz)])])
+        cut = hub_cutters(h_in, g, s.hub_radius + 1.0, s.running)
+        if cut:
+            sun = sun - union(cut)
+        # a sun standing on its hub prints upside down, its top face on the bed
+        parts.append(Part("sun", "gear", sun, print_flip=s.base > 0, gear=s.sun))
+        parts += turning_shaft(h_in, "shaft_in", "nut_in", -t - s.extension, gz + f, (g, gz + f))
+        if h_in.kind == "set_screw":
+            parts += screw_and_nut(h_in, "set_screw_in", "nut_in", g)
     say("planets")
-    planet = gear_body(s.planet, f, circle(s.pin_radius + s.running / 2, max(s.tol, 0.005), hole=True), g)
+    planet = gear_body(s.planet, f, circle(s.pin_radius + s.running / 2, max(s.tol, 0.005), hole=True), gz)
     for i in range(len(s.angles)):
         parts.append(Part(f"planet{i}", "gear", planet, gear=s.planet))
     say("carrier")
     pins = [(circle(s.pin_radius, tol, (s.centre_distance * math.cos(a), s.centre_distance * math.sin(a))),
-             g + min(0.25, g / 2), zc) for a in s.angles]
+             gz + min(0.25, g / 2), zc) for a in s.angles]
     plate_r = s.centre_distance + s.pin_radius + s.running / 2 + 2 * wall
-    plate = circle(plate_r, tol).difference(DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005)))
+    if h_out is None or h_out.kind == "d_flat":
+        plate = circle(plate_r, tol).difference(DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005)))
+    else:
+        plate = circle(plate_r, tol).difference(hub_hole(h_out, s.press, max(s.tol, 0.005)))
     carrier = union([slab(plate, zc, zc + t), prisms(pins)])
+    cut = hub_cutters(h_out, zc, plate_r + 1.0, s.running, s.screw_turn) if h_out else []
+    if cut:  # a nut trap or a set screw's slot in the plate's bottom face, the screw's hole out to its rim
+        carrier = carrier - union(cut)
     parts.append(Part("carrier", "carrier", carrier, print_flip=True))  # its plate's top on the bed, pins up
-    parts.append(Part("shaft_out", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("D", zc, zc + t),
-                                                                                    ("round", zc + t, zt + t + s.extension)], tol)))
-    contacts = [Contact("sun", "shaft_in", "press", (g, g + f), s.press / 2),
+    if h_out is None or h_out.kind == "d_flat":
+        parts.append(Part("shaft_out", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("D", zc, zc + t),
+                                                                                        ("round", zc + t, zt + t + s.extension)], tol)))
+    else:
+        parts += turning_shaft(h_out, "shaft_out", "nut_out", zc, zt + t + s.extension, (zc, zc + t))
+        if h_out.kind == "set_screw":
+            parts += screw_and_nut(h_out, "set_screw_out", "nut_out", zc, s.screw_turn)
+    held = lambda h: (s.running if h is not None and h.kind == "hex" else s.press) / 2  # noqa: E731 (a rod: clearance)
+    contacts = [Contact("sun", "shaft_in", "press", (g, gz + f), held(h_in)),
                 Contact("shaft_in", "frame_bottom", "running", (-t, 0.0), s.running / 2),
                 Contact("shaft_out", "frame_top", "running", (zt, zt + t), s.running / 2),
-                Contact("shaft_out", "carrier", "press", (zc, zc + t), s.press / 2),
+                Contact("shaft_out", "carrier", "press", (zc, zc + t), held(h_out)),
                 Contact("sun", "frame_bottom", "thrust"),
                 Contact("frame_top", "frame_bottom", "press", (zt, zt + t), s.press / 2)]
     for i in range(len(s.angles)):
         # the sun/planet meshes are left out of the pairwise sweep, as the planet/ring ones (the ring is
         # the frame's, met on the track by the thrust contact): their whole sections are checked
         # against each other at every mesh phase (checks.meshing, turn_planetary)
-        contacts += [Contact(f"planet{i}", "carrier", "running", (g + 0.25, g + f), s.running / 2),
+        contacts += [Contact(f"planet{i}", "carrier", "running", (gz + 0.25, gz + f), s.running / 2),
                      Contact(f"planet{i}", "frame_bottom", "thrust"), Contact("sun", f"planet{i}", "mesh")]
+    if h_in is not None:
+        contacts += hub_contacts(h_in, "sun", "shaft_in", "nut_in", "set_screw_in", "frame_bottom")
+        contacts += hub_contacts(h_out, "carrier", "shaft_out", "nut_out", "set_screw_out", None)
     return PlanetaryKit(s, tuple(parts), tuple(contacts))
 
 
@@ -308,7 +446,7 @@ class _SunPlanetView:
     def poses(self, theta=0.0):
         s = self.params
         P = self.kit.poses(theta)
-        return {n: P[n] @ pose_z(0.0, 0.0, s.gap) for n in ["sun"] + [f"planet{i}" for i in range(len(s.angles))]}
+        return {n: P[n] @ pose_z(0.0, 0.0, s.gear_z) for n in ["sun"] + [f"planet{i}" for i in range(len(s.angles))]}
 
 
 def _place(geom, angle: float, centre) -> object:
@@ -319,7 +457,7 @@ def _place(geom, angle: float, centre) -> object:
 
 def _sections(kit: PlanetaryKit) -> dict:
     s = kit.params
-    z = s.gap + s.face_width / 2
+    z = s.gear_z + s.face_width / 2
     ring = section(kit.part("frame_bottom").solid, z)
     r_out = s.space.tip_radius + 0.5 * s.system.module
     return {"sun": section(kit.part("sun").solid, z), "planet": section(kit.part("planet0").solid, z),

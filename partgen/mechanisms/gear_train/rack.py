@@ -7,6 +7,10 @@ Frame: the pinion's centre at the origin, the rack's pitch line at y = −(r_p +
 turning by θ (counter-clockwise), the pinion moves the rack by r_p θ along +x. z: the base's top at
 0; the pinion and the rack span [g, g + f]; the pinion rests on a thrust ring round its shaft, the
 rack on a strip under its body, both [0, g]; the rail stands [0, g + f].
+
+Bores (``shafts.bores: [pinion]``, hubs.py): a D-flat, a keyway, a nut trap in the pinion's bottom face
+on a bought threaded rod, or a set screw through a hub under it (then the pinion, the rack, its strip
+and the rail are raised by the hub's height b).
 """
 
 from __future__ import annotations
@@ -40,7 +44,8 @@ from ...geometry.measure import section
 from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import extrude, mesh_arrays, prisms, slab, union
-from .kit import FEATURE_TOL, Contact
+from .hubs import HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
+from .kit import FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, screw_and_nut, turning_shaft
 
 __all__ = ["RackSpec", "RackKit", "resolve_rack", "build_rack", "check_rack", "turn_rack"]
 
@@ -66,6 +71,14 @@ class RackSpec:
     material: str
     printer: PrinterLimits
     tol: float
+    hub: Hub | None = None  # the pinion's bore (None: a D-flat, as given no shafts.bores)
+    base: float = 0.0  # the pinion's set-screw hub under its gear: the pinion and the rack raised by it (mm)
+    hub_radius: float = 0.0  # that hub's radius (mm; 0: none)
+
+    @property
+    def gear_z(self) -> float:
+        """The pinion's and the rack's bottom face (z, mm)."""
+        return self.gap + self.base
 
     @property
     def pitch_line(self) -> float:
@@ -128,12 +141,50 @@ def resolve_rack(loaded: LoadedDesign) -> RackSpec:
     if 2 * r_shaft + running < p.min_hole_diameter_mm - 1e-6:
         raise ConfigError(loaded.path, "shafts.diameter_mm", f"the shaft's running hole (Ø{2 * r_shaft + running:.2f} mm)"
                           f" is below the printer's smallest running hole ({p.min_hole_diameter_mm:g} mm)")
+    hub, base, hub_r = _hub(loaded, pinion, r_shaft, running, press, wall)
     c = d.checks
     checks = CheckSettings(c.samples, c.interference_tolerance_mm3, c.min_clearance_mm, c.min_contact_ratio,
                            c.min_tip_width_roads, c.plate_margin_mm)
     return RackSpec(d.name, system, g.face_width_mm, pinion, teeth, r.back_mm, r.travel_mm, r_shaft, running, press,
                     d.shafts.extension_mm, fr.axial_gap_mm, fr.plate_thickness_mm, fr.margin_mm, checks,
-                    d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p), g.chord_tolerance_mm)
+                    d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p), g.chord_tolerance_mm, hub,
+                    base, hub_r)
+
+
+def _hub(loaded: LoadedDesign, pinion: GearSpec, r_shaft: float, running: float, press: float, wall: float):
+    """The pinion's bore from ``shafts.bores`` ([pinion]) and, for a set screw, its hub under the gear
+    (height: the pinion and the rack raised by it; radius). None when ``shafts.bores`` is absent."""
+    d, g = loaded.design, loaded.design.gears
+    if not d.shafts.bores:
+        return None, 0.0, 0.0
+    gap, f = d.frame.axial_gap_mm, g.face_width_mm
+    slack = max(g.chord_tolerance_mm, 0.005) + FEATURE_TOL
+    try:
+        h = plan_hub(d.shafts.bores[0], r_shaft, running, press, wall, gap, d.shafts.nut, d.shafts.set_screw, slack)
+    except HubError as e:
+        raise ConfigError(loaded.path, f"shafts.{e.key}", e.problem) from None
+    fits = lambda what, radius: sizes_within(h.kind, what, radius, r_shaft, running, press, wall, gap, slack)  # noqa: E731
+    key = f"shafts.{HARDWARE_KEY[h.kind]}"
+    what = {"keyway": "its keyway", "hex": f"its {h.nut} nut trap", "d_flat": "its D-bore",
+            "set_screw": f"its {h.nut} set screw's nut slot"}[h.kind]
+    root = pinion.root_radius
+    if h.kind != "d_flat" and h.room >= root:
+        raise ConfigError(loaded.path, key, f"a {pinion.teeth}-tooth pinion (root Ø{2 * root:.2f} mm) leaves less than "
+                          f"the printer's {wall:g} mm wall around {what} (needs a root Ø{2 * h.room:.2f} mm): a thinner "
+                          f"shaft or smaller hardware{fits('room', root)}, or more pinion teeth (rack.pinion_teeth)")
+    if h.kind == "hex" and h.pocket_depth + wall > f:
+        raise ConfigError(loaded.path, "shafts.nut", f"the pinion's {h.nut} nut trap ({h.pocket_depth:.2f} mm deep) and a "
+                          f"{wall:g} mm wall need a face {h.pocket_depth + wall:.2f} mm wide: a smaller nut"
+                          f"{fits('pocket_depth', f - wall)} or a wider face (gears.face_width_mm)")
+    if h.kind != "set_screw":
+        return h, 0.0, 0.0
+    # a hub under the pinion (the rack and its strip are raised with it): within the pinion's root
+    hub_r = min(max(h.bore + max(3 * wall, 2.5), h.hub_need), root)
+    if hub_r < h.hub_need - 1e-9:
+        raise ConfigError(loaded.path, "shafts.set_screw", f"the pinion's hub has room for Ø{2 * root:.2f} mm (its root "
+                          f"circle), its {h.nut} set screw needs Ø{2 * h.hub_need:.2f} mm: a smaller screw"
+                          f"{fits('hub_need', root)}, a thinner shaft or more pinion teeth (rack.pinion_teeth)")
+    return h, h.height, hub_r
 
 
 @dataclass(frozen=True)
@@ -149,14 +200,19 @@ class RackKit(ParamsKit):
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         a = -math.pi / 2 + float(theta)  # tooth 0 points down into a space of the rack at rest
-        return {"frame_bottom": np.eye(4), "pinion": pose_z(angle=a), "shaft": pose_z(angle=a),
-                "rack": pose_z(s.rack_x(float(theta)), s.pitch_line, s.gap)}
+        out = {"frame_bottom": np.eye(4), "pinion": pose_z(angle=a), "shaft": pose_z(angle=a),
+               "rack": pose_z(s.rack_x(float(theta)), s.pitch_line, s.gear_z)}
+        for n in ("nut", "set_screw"):  # a nut trap's nut, a set screw and its nut turn with the pinion
+            if any(p.name == n for p in self.parts):
+                out[n] = out["pinion"]
+        return out
 
 
 def build_rack(s: RackSpec, progress=None) -> RackKit:
     say = progress or (lambda name: None)
     tol = FEATURE_TOL
     g, f, t, m = s.gap, s.face_width, s.plate_thickness, s.system.module
+    gz, h = s.gear_z, s.hub
     al = s.system.pressure_angle
     hf = s.system.dedendum_coeff * m
     root_y = s.pitch_line - hf
@@ -166,31 +222,48 @@ def build_rack(s: RackSpec, progress=None) -> RackKit:
     say("frame_bottom")
     half = s.rack_length / 2 + s.travel / 2 + s.margin  # the guide holds the rack over its whole travel
     plate = box(-half, back_y - gap - rail_w - s.margin, half, s.pinion.tip_radius + s.margin)
-    hole = circle(s.shaft_radius + s.running / 2, tol, hole=True)
+    hole = circle((h.radius if h else s.shaft_radius) + s.running / 2, tol, hole=True)
     ring = circle(min(s.pinion.root_radius - 0.5, s.shaft_radius + s.running / 2 + max(2 * s.printer.min_wall, 2.0)),
                   tol).difference(hole)
     strip = box(-half, back_y + 0.5, half, root_y - s.checks.min_clearance - 0.5)
     rail = box(-half, back_y - gap - rail_w, half, back_y - gap)
-    base = union([slab(plate.difference(hole), -t, 0.0), prisms([(ring, 0.0, g), (strip, 0.0, g), (rail, 0.0, g + f)])])
+    base = union([slab(plate.difference(hole), -t, 0.0), prisms([(ring, 0.0, g), (strip, 0.0, gz), (rail, 0.0, gz + f)])])
     parts = [Part("frame_bottom", "frame", base)]
     say("pinion")
-    parts.append(Part("pinion", "gear", gear_body(s.pinion, f, DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005)), g),
-                      gear=s.pinion))
-    parts.append(Part("shaft", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("round", -t, g), ("D", g, g + f),
-                                                                                ("round", g + f, g + f + s.extension)], tol)))
+    if h is None or h.kind == "d_flat":
+        parts.append(Part("pinion", "gear", gear_body(s.pinion, f, DFit(s.shaft_radius, s.press).hole(max(s.tol, 0.005)),
+                                                      g), gear=s.pinion))
+        parts.append(Part("shaft", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("round", -t, g), ("D", g, g + f),
+                                                                                    ("round", g + f, g + f + s.extension)],
+                                                       tol)))
+    else:
+        bore = hub_hole(h, s.press, max(s.tol, 0.005))
+        pinion = gear_body(s.pinion, f, bore, gz)
+        if s.base:  # its set screw's hub, from its thrust ring up to the gear
+            pinion = union([pinion, prisms([(circle(s.hub_radius, tol).difference(bore), g, gz)])])
+        cut = hub_cutters(h, g, s.hub_radius + 1.0, s.running)
+        if cut:
+            pinion = pinion - union(cut)
+        parts.append(Part("pinion", "gear", pinion, print_flip=s.base > 0, gear=s.pinion))
+        parts += turning_shaft(h, "shaft", "nut", -t, gz + f + s.extension, (g, gz + f))
+        if h.kind == "set_screw":
+            parts += screw_and_nut(h, "set_screw", "nut", g)
     say("rack")
     outline = rack_outline(s.rack_teeth, m, al, s.system.backlash_per_gear, s.system.addendum_coeff,
                            s.system.dedendum_coeff, s.system.cutter_tip_coeff, s.back, s.system.chord_tolerance)
     parts.append(Part("rack", "rack", extrude(Polygon(outline), f)))
-    contacts = (Contact("pinion", "shaft", "press", (g, g + f), s.press / 2),
+    held = (s.running if h is not None and h.kind == "hex" else s.press) / 2  # a threaded rod: a clearance
+    contacts = (Contact("pinion", "shaft", "press", (g, gz + f), held),
                 Contact("shaft", "frame_bottom", "running", (-t, 0.0), s.running / 2),
                 Contact("pinion", "frame_bottom", "thrust"), Contact("rack", "frame_bottom", "thrust"))
+    if h is not None:
+        contacts += tuple(hub_contacts(h, "pinion", "shaft", "nut", "set_screw", "frame_bottom"))
     return RackKit(s, tuple(parts), contacts)
 
 
 def _sections(kit: RackKit) -> tuple:
     s = kit.params
-    z = s.gap + s.face_width / 2
+    z = s.gear_z + s.face_width / 2
     return section(kit.part("pinion").solid, z), section(kit.part("rack").solid, s.face_width / 2)
 
 

@@ -101,9 +101,9 @@ class Shafts(Strict):
     # turns in the frame: d_flat (pressed on a D), keyway (a keyway over the printed shaft's key), hex
     # (a nut trap: an ISO nut in the hub screws it onto a bought threaded rod) or set_screw (a radial
     # set screw through the hub into a captive square nut); default d_flat at the input and the output,
-    # round between
+    # round between. A planetary set: [input (the sun's), output (the carrier's)]; a rack: [the pinion's]
     bores: Annotated[list[Literal["round", "d_flat", "keyway", "hex", "set_screw"]],
-                     Field(min_length=2, max_length=9)] | None = None
+                     Field(min_length=1, max_length=9)] | None = None
     nut: Annotated[str, Field(min_length=1, max_length=10)] | None = None  # hex bores: the nut and rod, M3–M8
     set_screw: Annotated[str, Field(min_length=1, max_length=10)] = "M3"  # set_screw bores: the screw, M3–M8
     extension_mm: Gap = 10.0  # how far a turning shaft stands above the top plate
@@ -145,10 +145,15 @@ class GearTrainDesign(Strict):
         if sum(x is not None for x in (self.train, self.planetary, self.rack)) != 1:
             raise ValueError("[train] give one of: a train of stages (train), a planetary set (planetary), a rack and "
                              "pinion (rack)")
-        if (self.planetary is not None or self.rack is not None) and self.shafts.bores and \
-                set(self.shafts.bores) - {"round", "d_flat"}:
-            raise ValueError("[shafts.bores] keyway, hex and set_screw bores are made for trains of stages (train); a "
-                             "planetary set's and a rack's bores are fixed (round pins, D-flats)")
+        if (self.planetary is not None or self.rack is not None) and self.shafts.bores:
+            what, n = (("a planetary set's", 2) if self.planetary is not None else ("a rack's pinion", 1))
+            order = "[input (sun), output (carrier)]" if n == 2 else "[pinion]"
+            if len(self.shafts.bores) != n:
+                raise ValueError(f"[shafts.bores] {what} shafts take {n} bore{'s' * (n > 1)}, {order}; got "
+                                 f"{len(self.shafts.bores)}")
+            if "round" in self.shafts.bores:
+                raise ValueError(f"[shafts.bores] {what} shafts turn with their gear or carrier: d_flat, keyway, hex "
+                                 "or set_screw, not round (a fixed pin)")
         if (self.planetary is not None or self.rack is not None) and self.gears.helix_angle_deg:
             raise ValueError("[gears.helix_angle_deg] planetary sets and racks are spur here (helical rings and "
                              "racks are not made)")
