@@ -22,9 +22,9 @@ RULE_CHECKS = {"design", "mesh", "printability"}
 
 @pytest.fixture(scope="module")
 def chain_outcomes(tmp_path_factory):
-    """Eight random chain designs (gears and belts), built; the first two that build are checked."""
+    """Six random chain designs (gears and belts), built; the first two that build are checked."""
     out, checked = [], 0
-    for d in sweep.designs("chain", 8, SEED):
+    for d in sweep.designs("chain", 6, SEED):
         work = tmp_path_factory.mktemp(d["name"])
         o = sweep.run_one("chain", d, work, check=checked < 2, samples=24)
         checked += o.checked
