@@ -482,8 +482,13 @@ def _turner(geom, centre):
     return turned
 
 
-def _contact(fixed, piece, centre, sense: float, reach: float, tol: float) -> float:
-    """How far (rad, ≥ 0) ``piece`` turns about ``centre`` in the ``sense`` ±1 before it touches ``fixed``."""
+GUESS_SPAN = 5e-4  # rad: a bisection starts within this of a guess (the last angle's contact) when it brackets
+
+
+def _contact(fixed, piece, centre, sense: float, reach: float, tol: float, guess: float | None = None) -> float:
+    """How far (rad, ≥ 0) ``piece`` turns about ``centre`` in the ``sense`` ±1 before it touches ``fixed``
+    (to ``tol``); ``guess``: where it likely is — the bisection starts within GUESS_SPAN of it when
+    that brackets the contact (free at the low end, touching at the high end), else on [0, reach]."""
     shapely.prepare(fixed)  # indexed once: every step of the bisection tests it
     turn = _turner(piece, centre)
 
@@ -493,6 +498,12 @@ def _contact(fixed, piece, centre, sense: float, reach: float, tol: float) -> fl
     if area(0.0) > 1e-9:
         return 0.0
     lo, hi = 0.0, reach
+    if guess is not None and GUESS_SPAN < guess < reach - GUESS_SPAN:
+        a, b = guess - GUESS_SPAN, guess + GUESS_SPAN
+        if area(b) > 1e-9:
+            lo, hi = (a, b) if area(a) <= 1e-9 else (0.0, a)
+        else:
+            lo = b
     while hi - lo > tol:
         mid = (lo + hi) / 2
         lo, hi = (lo, mid) if area(mid) > 1e-9 else (mid, hi)
@@ -549,16 +560,19 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
     for key, sense in (("drive", 1.0), ("coast", -1.0)):
         # in the carrier frame the sun turns positive, the planets and the ring negative; driven, each
         # lags: it is found turned from its nominal angle against its motion (positive) until it touches
+        last: dict = {}  # (planet, sun or ring) -> the contact at the last angle: the next one's guess
         for k, th in enumerate(thetas):
             c = nominal[k]
             rings = []
             for i, (pc, w1, w2, w2_grown) in enumerate(windows):
                 phi, fixed, piece = shared[k][i]
-                phi_act = phi + sense * _contact(fixed, piece, pc, sense, reach_p, tol)
+                last[i, 0] = _contact(fixed, piece, pc, sense, reach_p, tol, last.get((i, 0)))
+                phi_act = phi + sense * last[i, 0]
                 planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
                 ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
                 ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2_grown)
-                rings.append(ring_nom + sense * _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol))
+                last[i, 1] = _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol, last.get((i, 1)))
+                rings.append(ring_nom + sense * last[i, 1])
             # the carrier is held by the planet that bears first: the ring's least lag
             out[key][k] = s.ring_phase - (min(rings) if sense > 0 else max(rings))
     return out
