@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 import shapely
@@ -316,11 +317,16 @@ class PlanetaryKit(ParamsKit):
                "shaft_in": pose_z(angle=float(theta)), "carrier": pose_z(angle=c), "shaft_out": pose_z(angle=c)}
         for i in range(len(s.angles)):
             out[f"planet{i}"] = pose_z(*s.planet_centre(i, theta), 0.0, s.planet_angle(i, theta))
-        for end, part in (("in", "sun"), ("out", "carrier")):  # bought nuts and screws turn with their part
-            for n in (f"nut_{end}", f"set_screw_{end}"):
-                if any(p.name == n for p in self.parts):
-                    out[n] = out[part]
+        for n, part in self._hardware:  # bought nuts and screws turn with their part
+            out[n] = out[part]
         return out
+
+    @cached_property
+    def _hardware(self) -> tuple[tuple[str, str], ...]:
+        """(bought part, the part it turns with) of the kit's nuts and set screws."""
+        names = {p.name for p in self.parts}
+        return tuple((n, part) for end, part in (("in", "sun"), ("out", "carrier"))
+                     for n in (f"nut_{end}", f"set_screw_{end}") if n in names)
 
 
 def _spacers(s: PlanetarySpec) -> list[tuple[float, float]]:
@@ -444,9 +450,12 @@ class _SunPlanetView:
         return self.kit.part(name)
 
     def poses(self, theta=0.0):
-        s = self.params
-        P = self.kit.poses(theta)
-        return {n: P[n] @ pose_z(0.0, 0.0, s.gear_z) for n in ["sun"] + [f"planet{i}" for i in range(len(s.angles))]}
+        s = self.params  # the sun's and the planets' poses as PlanetaryKit.poses has them, lifted to the gears
+        lift = pose_z(0.0, 0.0, s.gear_z)
+        out = {"sun": pose_z(angle=float(theta)) @ lift}
+        for i in range(len(s.angles)):
+            out[f"planet{i}"] = pose_z(*s.planet_centre(i, theta), 0.0, s.planet_angle(i, theta)) @ lift
+        return out
 
 
 def _place(geom, angle: float, centre) -> object:
