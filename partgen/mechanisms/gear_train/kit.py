@@ -492,6 +492,19 @@ def hub_hole(h: Hub, press: float, tol: float):
     return circle(h.bore, tol, hole=True)
 
 
+def hubbed_gear(gear: GearSpec, face: float, h: Hub, press: float, running: float, hub_radius: float,
+                z_thrust: float, z_gear: float, raised: bool, tol: float):
+    """A turning shaft's gear (the planetary's sun, the rack's pinion) with its bore feature: the gear
+    at ``z_gear``; when ``raised``, its set screw's hub from its thrust ring (``z_thrust``) up to the
+    gear; the hub's cutters (screw hole, nut slot or trap) taken out."""
+    hole = hub_hole(h, press, max(tol, 0.005))
+    solid = gear_body(gear, face, hole, z_gear)
+    if raised:  # its set screw's hub, from its thrust ring up to the gear
+        solid = union([solid, prisms([(circle(hub_radius, FEATURE_TOL).difference(hole), z_thrust, z_gear)])])
+    cut = hub_cutters(h, z_thrust, hub_radius + 1.0, running)
+    return solid - union(cut) if cut else solid
+
+
 def turning_shaft(h: Hub, name: str, nut: str, z0: float, z1: float, fit: tuple[float, float]) -> list[Part]:
     """A turning shaft from z0 to z1 for hub ``h`` (not ``d_flat``, whose D the caller lays out), the part
     it holds spanning ``fit``: printed round (a set screw's), round with its integral key along ``fit``

@@ -52,7 +52,8 @@ from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import mesh_arrays, prisms, slab, union
 from .hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
-from .kit import FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, screw_and_nut, turning_shaft
+from .kit import (FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, hubbed_gear, screw_and_nut,
+                  turning_shaft)
 
 __all__ = ["PlanetarySpec", "PlanetaryKit", "resolve_planetary", "build_planetary", "check_planetary",
            "turn_planetary"]
@@ -373,13 +374,7 @@ def build_planetary(s: PlanetarySpec, progress=None) -> PlanetaryKit:
         parts.append(Part("shaft_in", "axle", shaft_solid(DFit(s.shaft_radius, 0.0), [("round", -t - s.extension, g),
                                                                                        ("D", g, g + f)], tol)))
     else:
-        hole = hub_hole(h_in, s.press, max(s.tol, 0.005))
-        sun = gear_body(s.sun, f, hole, gz)
-        if s.base:  # its set screw's hub, from its thrust ring up to the gear
-            sun = union([sun, prisms([(circle(s.hub_radius, tol).difference(hole), g, gz)])])
-        cut = hub_cutters(h_in, g, s.hub_radius + 1.0, s.running)
-        if cut:
-            sun = sun - union(cut)
+        sun = hubbed_gear(s.sun, f, h_in, s.press, s.running, s.hub_radius, g, gz, bool(s.base), s.tol)
         # a sun standing on its hub prints upside down, its top face on the bed
         parts.append(Part("sun", "gear", sun, print_flip=s.base > 0, gear=s.sun))
         parts += turning_shaft(h_in, "shaft_in", "nut_in", -t - s.extension, gz + f, (g, gz + f))

@@ -45,7 +45,7 @@ from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import extrude, mesh_arrays, prisms, slab, union
 from .hubs import HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
-from .kit import FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, screw_and_nut, turning_shaft
+from .kit import FEATURE_TOL, Contact, hub_contacts, hubbed_gear, screw_and_nut, turning_shaft
 
 __all__ = ["RackSpec", "RackKit", "resolve_rack", "build_rack", "check_rack", "turn_rack"]
 
@@ -237,13 +237,7 @@ def build_rack(s: RackSpec, progress=None) -> RackKit:
                                                                                     ("round", g + f, g + f + s.extension)],
                                                        tol)))
     else:
-        bore = hub_hole(h, s.press, max(s.tol, 0.005))
-        pinion = gear_body(s.pinion, f, bore, gz)
-        if s.base:  # its set screw's hub, from its thrust ring up to the gear
-            pinion = union([pinion, prisms([(circle(s.hub_radius, tol).difference(bore), g, gz)])])
-        cut = hub_cutters(h, g, s.hub_radius + 1.0, s.running)
-        if cut:
-            pinion = pinion - union(cut)
+        pinion = hubbed_gear(s.pinion, f, h, s.press, s.running, s.hub_radius, g, gz, bool(s.base), s.tol)
         parts.append(Part("pinion", "gear", pinion, print_flip=s.base > 0, gear=s.pinion))
         parts += turning_shaft(h, "shaft", "nut", -t, gz + f + s.extension, (g, gz + f))
         if h.kind == "set_screw":
