@@ -68,6 +68,20 @@ def prime_kit_cache():
 # ``pytest -n auto --dist loadfile`` the scheduler below (xdist's hook) hands out whole files, as
 # loadfile does, except that these join the named file's worker and reuse its session kits
 # (``kit_of``). (xdist's own ``--dist loadgroup`` does not group under pytest 9.)
+@pytest.fixture(scope="session", autouse=True)
+def _project_out_untouched():
+    """No test writes into the project's own out/ (a user's kits live there): every test names its
+    output folder. A test that leaves anything new or removes anything there fails the session."""
+    out = ROOT / "out"
+
+    def listing() -> list[str]:
+        return sorted(str(p.relative_to(out)) for p in out.rglob("*")) if out.is_dir() else []
+    before = listing()
+    yield
+    after = listing()
+    assert after == before, f"tests changed {out}: {sorted(set(after) ^ set(before))[:8]}"
+
+
 SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_sphere]": "test_wrist.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_quasi_ellipsoid]": "test_wrist.py",
