@@ -110,7 +110,6 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
     (the figure ``closest_approach`` then names the closest of the pairs measured)."""
     settings = kit.params.checks
     names = [p.name for p in kit.parts]
-    idx = {n: i for i, n in enumerate(names)}
     P = pose_array(kit, names, thetas)
     zoff = P[0, :, 2, 3]
     skip = declared_pairs(kit)

@@ -7,9 +7,9 @@ Every length key ends in ``_mm``, every angle in ``_deg``; clearances say ``radi
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
 __all__ = ["Strict", "Printer", "Material"]
 

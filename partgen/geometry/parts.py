@@ -174,7 +174,6 @@ def pen_holder(spigot: DFit, spigot_height: float, tube_r: float, height: float,
                tol: float) -> m3d.Manifold:
     """Pen holder: a D-spigot [0, spigot_height] into the last plate, a tube above it holding the
     pen in a blind bore (``floor`` of solid under the pen), pen pointing up."""
-    bore = circle(pen_r, tol, hole=True)
     z1 = spigot_height + height
     return prisms([(spigot.shaft(tol), 0.0, spigot_height), (circle(tube_r, tol), spigot_height, spigot_height + floor),
                    (_annulus(pen_r, tube_r, tol), spigot_height + floor, z1)])

@@ -151,7 +151,6 @@ def report_sections(kit: A.BennettKit, result) -> list[tuple[str, str]]:
     each part prints, the bill of parts and what to buy."""
     from ...export import report as R
     from .plots import com_figure, poses_figure
-    from ...export.kit import atomic_dir
     from ...export.render import render
     from ...geometry.solid import mesh_arrays
 
@@ -248,7 +247,6 @@ class BennettButterfly:
         return spec.name
 
     def build(self, spec: BennettParams, progress=None) -> A.BennettKit:
-        from ...geometry.measure import oversize
 
         try:
             kit = A.build_bennett(spec, progress)

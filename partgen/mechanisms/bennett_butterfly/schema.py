@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import Field, model_validator
 
-from ...config.schema import (MAX, Density, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict, Teeth,
-                              Text)
+from ...config.schema import (Density, Finite, Gap, Length, Material, Name, NonNeg, Ratio, Strict, Text)
 
 __all__ = ["BennettDesign"]
 

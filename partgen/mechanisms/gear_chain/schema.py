@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import Field, model_validator
 
-from ...config.schema import (MAX, Coeff, Density, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict,
+from ...config.schema import (MAX, Coeff, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict,
                               Teeth, Text)
 
 __all__ = ["Design"]

@@ -344,10 +344,6 @@ class TrainKit(ParamsKit):
     contacts: tuple[Contact, ...]
     spacers: tuple[tuple[float, float], ...]
 
-    @property
-    def spec(self) -> TrainSpec:
-        return self.params
-
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         out = {"frame_bottom": np.eye(4), "frame_top": np.eye(4)}

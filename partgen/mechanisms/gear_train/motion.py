@@ -48,7 +48,7 @@ def turn_train(kit: TrainKit, thetas: np.ndarray, sections: dict | None = None, 
     "overlap_mm2": (n, stages) at the nominal angles}. Bisection to ``tol`` rad."""
     s = kit.params
     secs = sections or printed_sections(kit)
-    n, ns = len(thetas), len(s.shafts)
+    n = len(thetas)
     nominal = np.array([[s.angle(sh, float(t)) for sh in s.shafts] for t in thetas])
     out = {"nominal": nominal, "drive": nominal.copy(), "coast": nominal.copy(), "overlap_mm2": np.zeros((n, len(s.meshes)))}
     m = s.system.module

@@ -41,7 +41,6 @@ from ...design import rules
 from ...design.gear_train import mesh_phase
 from ...design.gearing import GearSpec, ToothSystem, centre_distance
 from ...checks.settings import CheckSettings
-from ...design.mechanism import gear_rules
 from ...design.planetary import (MIN_TOOTH_DIFFERENCE, PlanetaryTeeth, assembly_whole, internal_centre_distance,
                                  internal_contact_ratio, planet_angles, planet_clearance, planetary_teeth,
                                  ring_contact_on_pinion, ring_tip_radius)
@@ -307,10 +306,6 @@ class PlanetaryKit(ParamsKit):
     parts: tuple[Part, ...]
     contacts: tuple[Contact, ...]
 
-    @property
-    def spec(self) -> PlanetarySpec:
-        return self.params
-
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         c = s.carrier(float(theta))
@@ -524,7 +519,7 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
     included). Returns {"nominal", "drive", "coast"} carrier angles (n,) and "overlap_mm2" (n, 2N)."""
     s = kit.params
     secs = sections or _sections(kit)
-    zs, zp, zr = s.teeth.sun, s.teeth.planet, s.teeth.ring
+    zp, zr = s.teeth.planet, s.teeth.ring
     n = len(thetas)
     N = len(s.angles)
     nominal = np.array([s.carrier(float(t)) for t in thetas])
@@ -589,7 +584,6 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
     thetas = np.linspace(0.0, s.output_turn, n, endpoint=False)
     zs, zp, zr, N = s.teeth.sun, s.teeth.planet, s.teeth.ring, s.teeth.planets
     m, alpha = s.system.module, s.system.pressure_angle
-    mesh_rules = gear_rules(s)
     # the internal mesh's rules (the external sun/planet mesh: checks.meshing below)
     a = s.centre_distance
     need = rules.TIP_ROOT_COEFF * m

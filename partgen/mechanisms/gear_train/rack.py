@@ -193,10 +193,6 @@ class RackKit(ParamsKit):
     parts: tuple[Part, ...]
     contacts: tuple[Contact, ...]
 
-    @property
-    def spec(self) -> RackSpec:
-        return self.params
-
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.params
         a = -math.pi / 2 + float(theta)  # tooth 0 points down into a space of the rack at rest

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
-from ...config.schema import (MAX, Density, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict, Teeth,
-                              Text)
+from ...config.schema import (Finite, Gap, Length, Material, Name, Strict, Text)
 
 __all__ = ["WristDesign"]
 
