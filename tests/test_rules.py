@@ -17,7 +17,7 @@ from partgen.mechanisms.gear_chain.kit import build_kit
 from partgen.checks.meshing import check_meshes
 from partgen.checks.motion import prepare
 from partgen.checks.printability import check_printability
-from partgen.mechanisms.gear_chain.checks import printed_extents
+from partgen.checks.printability import printed_extents
 from partgen.design.drivetrain import Limits, choose_stage, stage_breaches
 from partgen.design.gearing import ToothSystem
 from partgen.design.mechanism import gear_rules

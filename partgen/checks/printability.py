@@ -12,9 +12,22 @@ from ..core.protocol import Kit
 from ..design import rules
 from ..design.mechanism import gear_rules
 from ..core.findings import Finding
+from ..geometry.solid import mesh_arrays
 from .motion import PartGeometry
 
-__all__ = ["check_printability"]
+__all__ = ["check_printability", "printed_extents"]
+
+
+def printed_extents(kit: Kit) -> dict[str, np.ndarray]:
+    """(3,) x, y, z extents of each printed part as it lies on the build plate, mm (printing it
+    flipped about x keeps them); bought parts are not printed and have none."""
+    out = {}
+    for p in kit.parts:
+        if not p.printed:
+            continue
+        v, _ = mesh_arrays(p.solid)
+        out[p.name] = v.max(axis=0) - v.min(axis=0)
+    return out
 
 
 def _polys(shape):

@@ -5,10 +5,8 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
 
 from .kit import Kit
-from ...geometry.solid import mesh_arrays
 from ...core.findings import Finding, Result
 from ...checks.fits import check_fits
 from ...checks.meshing import check_meshes
@@ -16,21 +14,9 @@ from ...checks.motion import prepare, sample_angles, sweep
 from .belts import check_belts
 from ...checks.bed import bed_findings
 from ...checks.bores import bore_findings
-from ...checks.printability import check_printability
+from ...checks.printability import check_printability, printed_extents
 
-__all__ = ["check_kit", "printed_extents"]
-
-
-def printed_extents(kit: Kit) -> dict[str, np.ndarray]:
-    """(3,) x, y, z extents of each part as it lies on the build plate, mm (printing it flipped
-    about x keeps them)."""
-    out = {}
-    for p in kit.parts:
-        if not p.printed:
-            continue
-        v, _ = mesh_arrays(p.solid)
-        out[p.name] = v.max(axis=0) - v.min(axis=0)
-    return out
+__all__ = ["check_kit"]
 
 
 def check_kit(kit: Kit, samples: int | None = None, progress=None) -> Result:

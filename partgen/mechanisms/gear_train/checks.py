@@ -18,7 +18,7 @@ from ...checks.bores import bore_findings
 from ...checks.fits import check_fits
 from ...checks.meshing import check_meshes
 from ...checks.motion import prepare, sweep
-from ...checks.printability import check_printability
+from ...checks.printability import check_printability, printed_extents
 from ...core.findings import Finding, Result
 from ...core.parts import Part
 from ...core.transforms import pose_z
@@ -26,7 +26,6 @@ from ...design import rules
 from ...design.mechanism import gear_rules
 from ...design.gear_train import overlap_ratio
 from ...geometry.measure import intersection
-from ...geometry.solid import mesh_arrays
 from .kit import Contact, TrainKit, TrainSpec
 from .motion import turn_train
 
@@ -84,16 +83,6 @@ def exact_mesh_overlap(kit: TrainKit, mesh, phases: int, nudge: float = 0.0) -> 
     return out
 
 
-def _extents(kit: TrainKit) -> dict[str, np.ndarray]:
-    out = {}
-    for p in kit.parts:
-        if not p.printed:  # bought hardware (a rod, a nut, a set screw) is not printed
-            continue
-        v, _ = mesh_arrays(p.solid)
-        out[p.name] = v.max(axis=0) - v.min(axis=0)
-    return out
-
-
 def check_train(kit: TrainKit, samples: int | None = None, progress=None) -> Result:
     s = kit.params
     res = Result()
@@ -129,7 +118,7 @@ def check_train(kit: TrainKit, samples: int | None = None, progress=None) -> Res
     t3 = time.perf_counter()
     found, fits = check_fits(kit, geo, thetas)
     res.add(*found)
-    found, printing = check_printability(kit, geo, _extents(kit))
+    found, printing = check_printability(kit, geo, printed_extents(kit))
     res.add(*found)
     found, on_bed = bed_findings(kit.parts, s.printer)
     res.add(*found)

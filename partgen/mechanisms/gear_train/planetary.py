@@ -30,7 +30,7 @@ from ...checks.bed import bed_findings
 from ...checks.fits import check_fits
 from ...checks.meshing import check_meshes
 from ...checks.motion import prepare, sweep
-from ...checks.printability import check_printability
+from ...checks.printability import check_printability, printed_extents
 from ...config.loader import LoadedDesign, printer_limits
 from ...core.findings import Finding, Result
 from ...core.parts import Part
@@ -49,7 +49,7 @@ from ...geometry.gear import gear_body, ring_body
 from ...geometry.measure import section
 from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
-from ...geometry.solid import mesh_arrays, prisms, slab, union
+from ...geometry.solid import prisms, slab, union
 from .hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
 from .kit import (FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, hubbed_gear, screw_and_nut,
                   turning_shaft)
@@ -626,8 +626,7 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
     res.add(*found)
     found, fits = check_fits(kit, geo, thetas)
     res.add(*found)
-    ext = {p.name: (lambda v: v.max(axis=0) - v.min(axis=0))(mesh_arrays(p.solid)[0]) for p in kit.parts}
-    found, printing = check_printability(kit, geo, ext)
+    found, printing = check_printability(kit, geo, printed_extents(kit))
     res.add(*found)
     found, on_bed = bed_findings(kit.parts, s.printer)
     res.add(*found)
