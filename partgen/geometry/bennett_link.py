@@ -18,7 +18,7 @@ import numpy as np
 
 from .printing import rotation_between
 
-__all__ = ["skew_link", "distal_axis", "place_on_axis", "Boss", "Bar", "Cup", "Column", "link_solid", "base_solid", "capsules",
+__all__ = ["skew_link", "distal_axis", "place_on_axis", "Boss", "Bar", "Cup", "Column", "Knee", "bar_paths", "polyline_tube", "link_solid", "LINK_PHASES", "base_solid", "capsules",
            "cylinder_capsules", "tube", "pin_solid"]
 
 
@@ -94,43 +94,142 @@ class Cup:
         return math.pi * self.pocket_radius ** 2 * self.pocket_depth
 
 
-# Consecutive bars of a bent bar share an end point, where the capsules are tangent to each
-# other's balls: equal balls leave the same sphere patch in both hulls and the union can pinch
-# (bodies touching at a vertex: not one shell once written; 3 of the first 23 Bennett sweep
-# designs). The first bar to reach a point keeps its ball, a later one ends in a ball
-# SHARED_END_INSET_MM smaller, strictly inside it. Its tube then crosses that ball at a shallow
-# angle, the smaller the inset the shallower: with 0.02 mm one design of 57 still wrote a sliver.
-SHARED_END_INSET_MM = 0.1  # far above float32 resolution at print size (~1e-5 mm), under a print's
+# How a bent bar is made (the Bennett sweep's bad meshes came from here). Capsules united at a shared
+# end are tangent to each other's balls, and two nearly collinear capsules cross at a grazing angle:
+# either leaves an edge or a sliver that float32 collapses (5 of 191 sweep designs wrote a link that
+# was not one shell). So consecutive bars bending by at most MITRE_MAX_RAD are one swept tube,
+# meshed directly with one mitre ring at each corner: no boolean between them at all. At a sharper
+# bend the tubes end flat at the corner inside a knuckle ball KNUCKLE_MM fatter than the bar, which
+# crosses each tube at acos(r / (r + k)) (~16 deg for an 8 mm bar), never tangent. A bar ending in a
+# boss ends flat at the boss centre, inside its bore.
+MITRE_MAX_RAD = math.radians(30.0)
+KNUCKLE_MM = 0.15
 
 
-def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segments: int = 48) -> m3d.Manifold:
-    """A link as one solid: bosses, bars and cups united, then every bore and pocket cut."""
-    return _link_solid(bosses, bars, cups, segments, SHARED_END_INSET_MM)
+@dataclass(frozen=True)
+class Knee:
+    """A corner of a bent bar: its point, the radius of the ball that covers it (mm) and the index of
+    the bar that turns there (the later one)."""
+
+    point: tuple[float, float, float]
+    radius: float
+    bar: int
+    mitred: bool
 
 
-def _link_solid(bosses, bars, cups, segments: int, inset: float) -> m3d.Manifold:
-    add = [place_on_axis(m3d.Manifold.cylinder(b.length, b.radius, -1.0, segments, True), np.asarray(b.point, float),
-                  np.asarray(b.axis, float), b.offset) for b in bosses]
-    owned: set[tuple] = set()
-    for bar in bars:
-        ends = []
-        for pt in (bar.p0, bar.p1):
-            key = tuple(round(float(x), 9) for x in pt)
-            ends.append(m3d.Manifold.sphere(bar.radius - (inset if key in owned else 0.0), segments)
-                        .translate(tuple(map(float, pt))))
-            owned.add(key)
-        add.append(m3d.Manifold.batch_hull(ends))
-    for c in cups:
-        add.append(place_on_axis(m3d.Manifold.cylinder(c.height, c.outer_radius, -1.0, segments, False), np.asarray(c.point, float),
-                          np.asarray(c.axis, float), 0.0))
+def bar_paths(bars: list[Bar], ends: list) -> tuple[list[tuple[list[int], np.ndarray]], list[Knee]]:
+    """How ``bars`` are built: paths (the bar indices and their (k, 3) points), each one swept tube,
+    and the knees where two bars meet outside a boss. ``ends``: points (3,) where bars end inside a
+    boss (its centre): a path ends there, flat. Zero-length bars are dropped. Consecutive bars (in
+    list order) sharing an end continue one path when they bend by at most MITRE_MAX_RAD and their
+    lengths hold the mitres; otherwise they meet in a knuckle."""
+    key = lambda q: tuple(round(float(x), 9) for x in q)  # noqa: E731
+    inside = {key(q) for q in ends}
+    paths: list[tuple[list[int], list[np.ndarray]]] = []
+    knees: list[Knee] = []
+    prev = None  # (bar index, direction, length, mitre length used at its start)
+    for k, bar in enumerate(bars):
+        p0, p1 = np.asarray(bar.p0, float), np.asarray(bar.p1, float)
+        length = float(np.linalg.norm(p1 - p0))
+        if length < 1e-6:
+            continue
+        d = (p1 - p0) / length
+        joined = False
+        if prev is not None and key(bars[prev[0]].p1) == key(bar.p0) and key(bar.p0) not in inside:
+            bend = math.acos(max(-1.0, min(1.0, float(prev[1] @ d))))
+            reach = bar.radius * math.tan(bend / 2)  # how far the mitre reaches along each bar
+            if (bend <= MITRE_MAX_RAD and bars[prev[0]].radius == bar.radius
+                    and prev[3] + reach < prev[2] - 1e-3 and reach < length - 1e-3):
+                paths[-1][0].append(k)
+                paths[-1][1].append(p1)
+                knees.append(Knee(tuple(map(float, p0)), bar.radius / math.cos(bend / 2), k, True))
+                joined = True
+            else:
+                knees.append(Knee(tuple(map(float, p0)), max(bar.radius, bars[prev[0]].radius) + KNUCKLE_MM, k, False))
+        else:
+            reach = 0.0
+        if not joined:
+            paths.append(([k], [p0, p1]))
+            reach = 0.0
+        prev = (k, d, length, reach)
+    return [(ks, np.array(pts)) for ks, pts in paths], knees
+
+
+def polyline_tube(points: np.ndarray, radius: float, segments: int = 48, phase: float = 0.0) -> m3d.Manifold:
+    """A round tube (radius mm) along a polyline (k, 3), flat at both ends, one mitre ring at each
+    corner: one mesh, so its bends hold no boolean. The rings' frames are carried along the path by
+    the smallest rotation at each corner, so each mitre ring lies on both cylinders it joins.
+    ``phase``: the rings' first vertex, in steps of 2π/segments."""
+    pts = np.asarray(points, float)
+    d = np.diff(pts, axis=0)
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    u = np.cross(d[0], [1.0, 0, 0] if abs(d[0][0]) < 0.9 else [0, 1.0, 0])
+    u /= np.linalg.norm(u)
+    phi = 2 * np.pi * (np.arange(segments) + phase) / segments
+    rings = []
+    for k in range(len(pts)):
+        dk = d[min(k, len(d) - 1)]
+        if 0 < k < len(pts) - 1:
+            u_prev, d_prev = u, d[k - 1]
+            u = rotation_between(d_prev, d[k]) @ u_prev
+            v_prev = np.cross(d_prev, u_prev)
+            c = radius * (np.cos(phi)[:, None] * u_prev + np.sin(phi)[:, None] * v_prev)
+            n = d_prev + d[k]
+            t = -(c @ n) / float(d_prev @ n)  # slide along the incoming axis onto the bisecting plane
+            rings.append(pts[k] + c + t[:, None] * d_prev)
+            continue
+        v = np.cross(dk, u)
+        rings.append(pts[k] + radius * (np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * v))
+    m = len(rings)
+    verts = np.concatenate(rings + [pts[:1], pts[-1:]])
+    i = np.arange(segments)
+    j = (i + 1) % segments
+    tris = []
+    for k in range(m - 1):
+        a, b = k * segments, (k + 1) * segments
+        tris += [np.stack([a + i, b + j, a + j], 1), np.stack([a + i, b + i, b + j], 1)]
+    s0, s1 = m * segments, m * segments + 1
+    last = (m - 1) * segments
+    tris += [np.stack([np.full(segments, s0), i, j], 1), np.stack([np.full(segments, s1), last + j, last + i], 1)]
+    faces = np.concatenate(tris)
+    # outward winding: the tube's signed volume is positive
+    a, b, c = (verts[faces[:, q]] for q in range(3))
+    if np.einsum("ij,ij->i", a, np.cross(b, c)).sum() < 0:
+        faces = faces[:, ::-1]
+    out = m3d.Manifold(m3d.Mesh64(vert_properties=np.ascontiguousarray(verts), tri_verts=faces.astype(np.uint64)))
+    if out.status() != m3d.Error.NoError:
+        raise ValueError(f"a bar along {len(pts)} points is not a manifold tube: {out.status()}")
+    return out
+
+
+def link_solid(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), segments: int = 48, phase: float = 0.0
+               ) -> m3d.Manifold:
+    """A link as one solid: bosses, bars and cups united, then every bore and pocket cut. ``phase``
+    (a fraction of one of the ``segments`` steps) turns every round feature's facets about its own
+    axis: where two features cross, their facets then meet elsewhere (see ``LINK_PHASES``)."""
+    turn = 360.0 * phase / segments
+
+    def round_feature(height, radius, point, axis, offset, center):
+        cyl = m3d.Manifold.cylinder(height, radius, -1.0, segments, center).rotate((0.0, 0.0, turn))
+        return place_on_axis(cyl, np.asarray(point, float), np.asarray(axis, float), offset)
+
+    add = [round_feature(b.length, b.radius, b.point, b.axis, b.offset, True) for b in bosses]
+    paths, knees = bar_paths(bars, [b.centre for b in bosses])
+    add += [polyline_tube(pts, bars[ks[0]].radius, segments, phase) for ks, pts in paths]
+    add += [m3d.Manifold.sphere(k.radius, segments).rotate((turn, turn, turn)).translate(k.point)
+            for k in knees if not k.mitred]
+    add += [round_feature(c.height, c.outer_radius, c.point, c.axis, 0.0, False) for c in cups]
     # bores run a little past the faces (bars meeting a boss end within its faces: bar radius ≤ half its length)
-    cut = [place_on_axis(m3d.Manifold.cylinder(b.length + 0.4, b.bore_radius, -1.0, segments, True), np.asarray(b.point, float),
-                  np.asarray(b.axis, float), b.offset) for b in bosses]
-    for c in cups:
-        start = c.height - c.pocket_depth
-        cut.append(place_on_axis(m3d.Manifold.cylinder(c.pocket_depth + 0.1, c.pocket_radius, -1.0, segments, False),
-                          np.asarray(c.point, float), np.asarray(c.axis, float), start))
+    cut = [round_feature(b.length + 0.4, b.bore_radius, b.point, b.axis, b.offset, True) for b in bosses]
+    cut += [round_feature(c.pocket_depth + 0.1, c.pocket_radius, c.point, c.axis, c.height - c.pocket_depth, False)
+            for c in cups]
     return m3d.Manifold.batch_boolean(add, m3d.OpType.Add) - m3d.Manifold.batch_boolean(cut, m3d.OpType.Add)
+
+
+# Where curved solids cross, a boolean now and then leaves two vertices ~1e-6 mm apart (a triple
+# point of two bars and a knuckle, say), which a float32 STL welds into a non-manifold edge: a
+# link is built at the first of these phases whose mesh, as written, stays sound.
+LINK_PHASES = (0.0, 0.5, 0.25, 0.75)
 
 
 def cylinder_capsules(centre: np.ndarray, axis: np.ndarray, radius: float, length: float, spokes: int = 4
@@ -165,8 +264,8 @@ def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), columns:
              ) -> tuple[np.ndarray, np.ndarray, list[int]]:
     """Capsules that contain the features: ((k, 2, 3) segment ends mm, (k,) radii mm, and for each
     capsule the index of its feature in bosses + bars + cups + columns). Bosses, cups and feet are
-    covered by ``cylinder_capsules``; a bar is a capsule exactly, and so is a post's core (its
-    caps reach a radius past its ends)."""
+    covered by ``cylinder_capsules``; a bar by its capsule and the balls of its knees
+    (``bar_paths``), and a post's core by one capsule (its caps reach a radius past its ends)."""
     ends, radii, owner = [], [], []
     for n, b in enumerate(bosses):
         e, r = cylinder_capsules(b.centre, np.asarray(b.axis, float), b.radius, b.length)
@@ -177,6 +276,12 @@ def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), columns:
         ends.append(np.array([[bar.p0, bar.p1] for bar in bars], float))
         radii.append(np.array([bar.radius for bar in bars], float))
         owner += list(range(len(bosses), len(bosses) + len(bars)))
+        # a knee's ball (a knuckle, or what covers a mitre's outer corner), owned by the bar turning there
+        knees = bar_paths(bars, [b.centre for b in bosses])[1]
+        if knees:
+            ends.append(np.array([[k.point, k.point] for k in knees], float))
+            radii.append(np.array([k.radius for k in knees], float))
+            owner += [len(bosses) + k.bar for k in knees]
     for n, c in enumerate(cups):
         d = np.asarray(c.axis, float) / np.linalg.norm(c.axis)
         e, r = cylinder_capsules(np.asarray(c.point, float) + d * c.height / 2, d, c.outer_radius, c.height)

@@ -23,6 +23,8 @@ def segment_distance(p0: np.ndarray, p1: np.ndarray, q0: np.ndarray, q1: np.ndar
     # clamp t and recompute s where needed
     s = np.where(t < 0, np.clip(-c / np.where(a > tiny, a, 1), 0, 1), np.where(t > 1, np.clip((b - c) / np.where(a > tiny, a, 1), 0, 1), s))
     t = np.clip(t, 0, 1)
+    # q a point (a zero-length capsule: a ball): the nearest point of p to it (t is 0 already)
+    s = np.where((e <= tiny) & (a > tiny), np.clip(-c / np.where(a > tiny, a, 1), 0, 1), s)
     gap = p0 + d1 * s[..., None] - (q0 + d2 * t[..., None])
     return np.linalg.norm(gap, axis=-1)
 

@@ -23,11 +23,11 @@ from ...core.protocol import ParamsKit
 from ...core.transforms import frame_z
 from ...design import bennett_butterfly as bbf
 from .params import BennettParams
-from ...geometry.bennett_link import Cup, base_solid, link_solid, pin_solid
+from ...geometry.bennett_link import LINK_PHASES, Cup, base_solid, link_solid, pin_solid
 from ...geometry.mass import printed_mass
 from ...geometry.parts import Part
 from ...geometry.printing import best_orientation
-from ...geometry.solid import cylinder, mesh_arrays
+from ...geometry.solid import cylinder, float32_sound, mesh_arrays, print_arrays
 from .layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
                              part_reach, point_speed, search_layout, shape_samples, sweep_clearance)
 from .parts import (BASE, Fill, Layout, base_features, choose_fill, cup_of, cw_nominal, default_layout,
@@ -278,14 +278,17 @@ def _build(p: BennettParams, lay: Layout, say, figures: dict, cache: dict, round
         key = ("link", tuple(bosses), tuple(bars), tuple(cw), p.segments)
         hit = cache.get(key)
         if hit is None:
-            solid = link_solid(bosses, bars, cw, p.segments)
-            on_bed, pose, lm = _weigh(solid, p)
+            for phase in LINK_PHASES:  # the first whose STL, as written, stays one shell
+                solid = link_solid(bosses, bars, cw, p.segments, phase)
+                on_bed, pose, lm = _weigh(solid, p)
+                if float32_sound(*print_arrays(on_bed)[:2]):
+                    break
             moving = 0.0
-            if cw:  # the cup (a cylinder less its pocket) and the capsule from its bar's exit to it
+            if cw:  # the cup (a cylinder less its pocket) and the tube from its bar's exit to it (ends flat there)
                 c, carry = cw[0], bars[-1]
                 length = float(np.linalg.norm(np.subtract(carry.p1, carry.p0)))
                 moving = p.density * math.pi * (c.outer_radius ** 2 * c.height - c.pocket_radius ** 2 * c.pocket_depth
-                                                + carry.radius ** 2 * length + 4 / 3 * carry.radius ** 3)
+                                                + carry.radius ** 2 * length)
             hit = cache[key] = _Built(solid, on_bed, pose, lm, cw[0] if cw else None, moving)
         links[i] = hit
 
