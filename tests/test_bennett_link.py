@@ -132,6 +132,9 @@ def test_bar_paths_mitre_gentle_bends_and_knuckle_sharp_ones():
     # 0°, 2° and 29° continue one path; 31° and 80° start new ones, each with a knuckle
     assert [ks for ks, _ in paths] == [[0, 1, 3, 4], [5], [6]]
     assert [k.mitred for k in knees] == [True, True, True, False, False]
+    # the knee at the boss's exit belongs to the bar leaving the boss (the checks exempt it with that
+    # bar from the parts stacked on its pin), every other one to the later bar
+    assert [k.bar for k in knees] == [0, 3, 4, 5, 6]
     for k, b in zip(knees, (0.0, 2.0, 29.0)):
         assert k.radius == pytest.approx(r / math.cos(math.radians(b) / 2))  # covers the mitre's outer corner
     assert all(k.radius == pytest.approx(r + KNUCKLE_MM) for k in knees[3:])

@@ -109,7 +109,8 @@ KNUCKLE_MM = 0.15
 @dataclass(frozen=True)
 class Knee:
     """A corner of a bent bar: its point, the radius of the ball that covers it (mm) and the index of
-    the bar that turns there (the later one)."""
+    the bar it belongs to: of the two that meet there, the one that runs into a boss (a knee at a
+    boss's exit is part of the bar leaving that boss), else the later one."""
 
     point: tuple[float, float, float]
     radius: float
@@ -136,16 +137,17 @@ def bar_paths(bars: list[Bar], ends: list) -> tuple[list[tuple[list[int], np.nda
         d = (p1 - p0) / length
         joined = False
         if prev is not None and key(bars[prev[0]].p1) == key(bar.p0) and key(bar.p0) not in inside:
+            owner = prev[0] if key(bars[prev[0]].p0) in inside and key(bar.p1) not in inside else k
             bend = math.acos(max(-1.0, min(1.0, float(prev[1] @ d))))
             reach = bar.radius * math.tan(bend / 2)  # how far the mitre reaches along each bar
             if (bend <= MITRE_MAX_RAD and bars[prev[0]].radius == bar.radius
                     and prev[3] + reach < prev[2] - 1e-3 and reach < length - 1e-3):
                 paths[-1][0].append(k)
                 paths[-1][1].append(p1)
-                knees.append(Knee(tuple(map(float, p0)), bar.radius / math.cos(bend / 2), k, True))
+                knees.append(Knee(tuple(map(float, p0)), bar.radius / math.cos(bend / 2), owner, True))
                 joined = True
             else:
-                knees.append(Knee(tuple(map(float, p0)), max(bar.radius, bars[prev[0]].radius) + KNUCKLE_MM, k, False))
+                knees.append(Knee(tuple(map(float, p0)), max(bar.radius, bars[prev[0]].radius) + KNUCKLE_MM, owner, False))
         else:
             reach = 0.0
         if not joined:
