@@ -18,8 +18,9 @@ import numpy as np
 
 from .printing import rotation_between
 
-__all__ = ["skew_link", "distal_axis", "place_on_axis", "Boss", "Bar", "Cup", "Column", "Knee", "bar_paths", "polyline_tube", "link_solid", "LINK_PHASES", "base_solid", "capsules",
-           "cylinder_capsules", "tube", "pin_solid"]
+__all__ = ["skew_link", "distal_axis", "place_on_axis", "Boss", "Bar", "Cup", "Column", "Knee", "bar_paths",
+           "polyline_tube", "link_solid", "LINK_PHASES", "base_solid", "capsules", "cylinder_capsules", "tube",
+           "pin_solid"]
 
 
 def distal_axis(a: float, alpha: float) -> tuple[np.ndarray, np.ndarray]:
@@ -278,7 +279,7 @@ def capsules(bosses: list[Boss], bars: list[Bar], cups: list[Cup] = (), columns:
         ends.append(np.array([[bar.p0, bar.p1] for bar in bars], float))
         radii.append(np.array([bar.radius for bar in bars], float))
         owner += list(range(len(bosses), len(bosses) + len(bars)))
-        # a knee's ball (a knuckle, or what covers a mitre's outer corner), owned by the bar turning there
+        # a knee's ball (a knuckle, or what covers a mitre's outer corner), owned by its bar (Knee.bar)
         knees = bar_paths(bars, [b.centre for b in bosses])[1]
         if knees:
             ends.append(np.array([[k.point, k.point] for k in knees], float))
