@@ -125,20 +125,24 @@ def bar_paths(bars: list[Bar], ends: list) -> tuple[list[tuple[list[int], np.nda
     boss (its centre): a path ends there, flat. Zero-length bars are dropped. Consecutive bars (in
     list order) sharing an end continue one path when they bend by at most MITRE_MAX_RAD and their
     lengths hold the mitres; otherwise they meet in a knuckle."""
-    key = lambda q: tuple(round(float(x), 9) for x in q)  # noqa: E731
-    inside = {key(q) for q in ends}
+    if not bars:
+        return [], []
+    # points compared to 1e-9 mm (the layout search asks thousands of times: keys made in one pass)
+    pts_all = np.array([[b.p0, b.p1] for b in bars], float)
+    keys = [(tuple(a), tuple(b)) for a, b in np.round(pts_all, 9).tolist()]
+    inside = {tuple(q) for q in np.round(np.asarray(ends, float).reshape(-1, 3), 9).tolist()}
     paths: list[tuple[list[int], list[np.ndarray]]] = []
     knees: list[Knee] = []
     prev = None  # (bar index, direction, length, mitre length used at its start)
     for k, bar in enumerate(bars):
-        p0, p1 = np.asarray(bar.p0, float), np.asarray(bar.p1, float)
+        p0, p1 = pts_all[k]
         length = float(np.linalg.norm(p1 - p0))
         if length < 1e-6:
             continue
         d = (p1 - p0) / length
         joined = False
-        if prev is not None and key(bars[prev[0]].p1) == key(bar.p0) and key(bar.p0) not in inside:
-            owner = prev[0] if key(bars[prev[0]].p0) in inside and key(bar.p1) not in inside else k
+        if prev is not None and keys[prev[0]][1] == keys[k][0] and keys[k][0] not in inside:
+            owner = prev[0] if keys[prev[0]][0] in inside and keys[k][1] not in inside else k
             bend = math.acos(max(-1.0, min(1.0, float(prev[1] @ d))))
             reach = bar.radius * math.tan(bend / 2)  # how far the mitre reaches along each bar
             if (bend <= MITRE_MAX_RAD and bars[prev[0]].radius == bar.radius
