@@ -85,7 +85,9 @@ def _project_out_untouched():
 SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_sphere]": "test_wrist.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_quasi_ellipsoid]": "test_wrist.py",
-    "test_bennett_kit.py": "test_bennett_cli.py",  # tests/designs/bennett_fixed
+    # the shipped Bennett kit (its layout search: the suite's costliest build), built once for all three
+    "test_manifest_schema.py::test_manifest_holds_the_schema[bennett_butterfly]": "test_bennett_cli.py",
+    "test_bennett_kit.py": "test_bennett_cli.py",
 }
 # The groups that take longest go first, so the two workers end together.
 FIRST = ("test_wrist.py", "test_bennett_cli.py", "test_manifest_schema.py", "test_sweep.py", "test_check.py")
