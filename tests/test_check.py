@@ -162,17 +162,15 @@ def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache
     assert main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "2"]) == 2
 
 
-def test_check_a_built_kit_folder_and_notice_tampering(capsys, kit_copy):
-    kit = kit_copy("butterfly")  # a fresh copy of the session's `partgen build` of it, ours to tamper with
-    # (not primed: check rebuilds the kit from the folder's own design.yaml and compares its STLs)
-    assert main(["check", str(kit), "--samples", "12", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["ok"] is True
-    assert (kit / "plates" / "plate1.3mf").is_file()
-    stl = kit / "B4.stl"
-    stl.write_bytes(stl.read_bytes()[:-50] + bytes(50))
-    assert main(["check", str(kit), "--samples", "12", "--json", "--no-plates"]) == 1
-    out = json.loads(capsys.readouterr().out)
-    assert any(f["check"] == "kit" and "B4" in f["parts"] for f in out["findings"])
+def test_check_a_built_kit_folder_and_notice_tampering(checked_default_kit):
+    """`check KITDIR` on a copy of the session's `partgen build` of the default design (not primed:
+    check rebuilds the kit from the folder's own design.yaml and compares its STLs), then on a copy
+    of it with B4.stl tampered: the session's runs of them (tests/test_plates.py reads the plates)."""
+    c = checked_default_kit
+    assert c["code"] == 0 and c["out"]["ok"] is True
+    assert (c["folder"] / "plates" / "plate1.3mf").is_file()
+    assert c["tampered_code"] == 1
+    assert any(f["check"] == "kit" and "B4" in f["parts"] for f in c["tampered_out"]["findings"])
 
 
 def test_sweep_samples_the_whole_cycle():
