@@ -124,7 +124,7 @@ SHARED = {
     "test_plates.py": "test_check.py",  # checked_default_kit: `check KITDIR` of the default kit
 }
 # The groups that take longest go first, so the two workers end together.
-FIRST = ("test_wrist.py", "test_bennett_cli.py", "test_manifest_schema.py", "test_sweep.py", "test_check.py")
+FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")
 
 
 def _group(nodeid: str) -> str:
