@@ -45,6 +45,39 @@ def kit_copy(kit_of, tmp_path):
     return copy
 
 
+@pytest.fixture(scope="session")
+def checked_default_kit(tmp_path_factory, kit_of):
+    """`partgen check KITDIR --samples 12 --json` on a copy of the session's default kit folder (not
+    primed: check rebuilds the kit from the folder's own design.yaml and compares the STLs), and the
+    same on a copy of that with B4.stl tampered (``--no-plates``); run once per session (per worker):
+    tests/test_check.py and tests/test_plates.py share it (one worker, ``SHARED``). Returns
+    {"folder": the checked kit folder with its plates/ (read it, never write into it),
+    "code"/"out": the exit code and JSON of its check, "tampered_code"/"tampered_out": the tampered
+    copy's}."""
+    import contextlib
+    import io
+    import json
+
+    from partgen.cli.main import main
+
+    def check(folder: Path, *more: str) -> tuple[int, dict]:
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            code = main(["check", str(folder), "--samples", "12", "--json", *more])
+        return code, json.loads(out.getvalue())
+
+    base = tmp_path_factory.mktemp("checked")
+    folder = base / "butterfly_kit"
+    shutil.copytree(kit_of("butterfly").dest, folder)
+    code, out = check(folder)
+    tampered = base / "tampered_kit"
+    shutil.copytree(folder, tampered)
+    stl = tampered / "B4.stl"
+    stl.write_bytes(stl.read_bytes()[:-50] + bytes(50))
+    tampered_code, tampered_out = check(tampered, "--no-plates")
+    return {"folder": folder, "code": code, "out": out, "tampered_code": tampered_code, "tampered_out": tampered_out}
+
+
 @pytest.fixture
 def prime_kit_cache():
     """``prime_kit_cache(built, target=None)``: make ``built.kit`` (or ``built`` itself, a kit built
@@ -85,10 +118,13 @@ def _project_out_untouched():
 SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_sphere]": "test_wrist.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[wrist_quasi_ellipsoid]": "test_wrist.py",
-    "test_bennett_kit.py": "test_bennett_cli.py",  # tests/designs/bennett_fixed
+    # the shipped Bennett kit (its layout search: the suite's costliest build), built once for all three
+    "test_manifest_schema.py::test_manifest_holds_the_schema[bennett_butterfly]": "test_bennett_cli.py",
+    "test_bennett_kit.py": "test_bennett_cli.py",
+    "test_plates.py": "test_check.py",  # checked_default_kit: `check KITDIR` of the default kit
 }
 # The groups that take longest go first, so the two workers end together.
-FIRST = ("test_wrist.py", "test_bennett_cli.py", "test_manifest_schema.py", "test_sweep.py", "test_check.py")
+FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")
 
 
 def _group(nodeid: str) -> str:

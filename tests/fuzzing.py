@@ -135,6 +135,7 @@ def all_cases(configs: list[Path], seed: int) -> list[tuple[Path, str, str, dict
 def worker(configs: list[Path], seed: int, budget: float, case_seconds: float, limit: int | None,
            only: set[int] | None = None) -> None:
     from partgen.cli.main import main
+    import partgen.pipeline  # noqa: F401  (what main imports first: not inside the first case's time limit)
 
     cases = all_cases(configs, seed)
     if limit:

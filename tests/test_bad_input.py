@@ -207,13 +207,12 @@ def _hashes(folder: Path) -> dict[str, str]:
     return {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted(folder.iterdir())}
 
 
-def test_failed_build_keeps_previous_kit(tmp_path, capsys):
-    """A good kit in DIR survives, byte for byte, a build that fails late (in the geometry)."""
+def test_failed_build_keeps_previous_kit(tmp_path, capsys, kit_copy):
+    """A good kit in DIR (a copy of the session's `partgen build` of the default design) survives,
+    byte for byte, a build that fails late (in the geometry)."""
     parent = tmp_path / "outparent"
     parent.mkdir()
-    kit = parent / "kit"
-    assert main(["build", str(CONFIGS / "butterfly.yaml"), "-o", str(kit), "-q"]) == 0
-    capsys.readouterr()
+    kit = kit_copy("butterfly", parent / "kit")
     before = _hashes(kit)
     assert "manifest.json" in before and "assembly.glb" in before
     assert any(n.endswith(".stl") for n in before)

@@ -9,7 +9,6 @@ import numpy as np
 import shapely
 import pytest
 
-from partgen import pipeline
 from partgen.mechanisms.gear_chain.resolve import load as chain_load
 from partgen.mechanisms.gear_chain.kit import belt_path_of, build_kit
 from partgen.mechanisms.gear_chain.checks import check_kit
@@ -24,9 +23,11 @@ GT2 = BeltProfile()
 
 
 @pytest.fixture(scope="module")
-def belt():
-    L = chain_load(ROOT / "configs" / "butterfly_belt.yaml")
-    return L, build_kit(L.mechanism, L.params)
+def belt(kit_of):
+    """(ChainSpec, kit) of the shipped belt design: the session's `partgen build` of it (``kit_of``)."""
+    b = kit_of("butterfly_belt")
+    assert b.loaded.spec == chain_load(ROOT / "configs" / "butterfly_belt.yaml")
+    return b.loaded.spec, b.kit
 
 
 def test_belt_path_matches_the_open_belt_formula_and_its_own_polyline():
@@ -81,7 +82,7 @@ def test_pulleys_measure_as_designed(belt):
     assert len(getattr(pieces, "geoms", [pieces])) == s.D.teeth
 
 
-def test_belt_kit_builds_and_passes_its_check(belt, tmp_path):
+def test_belt_kit_builds_and_passes_its_check(belt, kit_of):
     L, kit = belt
     roles = {p.role for p in kit.parts}
     assert {"pulley", "idler", "belt"} <= roles and "gear" in roles  # G1 and the drive stay gears
@@ -92,7 +93,7 @@ def test_belt_kit_builds_and_passes_its_check(belt, tmp_path):
     result = check_kit(kit, 36)
     assert result.ok, [f.message for f in result.findings if f.severity == "fail"]
     assert all(r[k] >= 6 for r in result.figures["belts"] for k in r if k.startswith("teeth_in_mesh"))
-    _, _, man, folder = pipeline.build(ROOT / "configs" / "butterfly_belt.yaml", tmp_path / "kit")
+    man = kit_of("butterfly_belt").manifest  # the kit folder `build` wrote
     assert not any(p["role"] == "belt" for p in man["parts"])  # bought, not printed
     assert [b["teeth"] for b in man["purchased"]] == [s.belt_teeth for s in L.mechanism.belt_stages]
     assert {p["role"] for p in man["parts"]} >= {"pulley", "idler"}

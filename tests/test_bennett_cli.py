@@ -17,19 +17,33 @@ from partgen.design import bennett_butterfly as bbf
 from partgen.testing import mesh_problems
 
 ROOT = Path(__file__).resolve().parents[1]
+SHIPPED = ROOT / "configs" / "bennett_butterfly.yaml"
 FIXED = ROOT / "tests" / "designs" / "bennett_fixed.yaml"
 
 
 @pytest.fixture(scope="module")
-def built_fixed(kit_of):
-    """(kit folder, kit) of `build FIXED`, the session's (tests/test_bennett_kit.py shares it)."""
-    b = kit_of("tests/designs/bennett_fixed")
+def built_shipped(kit_of):
+    """(kit folder, kit) of `build configs/bennett_butterfly.yaml` (its layout search included), the
+    session's: tests/test_bennett_kit.py and the manifest schema test share it (one worker, ``SHARED``
+    in conftest.py), so the suite builds the shipped Bennett kit once instead of that and FIXED."""
+    b = kit_of("bennett_butterfly")
     return b.dest, b.kit
 
 
 @pytest.fixture(scope="module")
-def kit_dir(built_fixed):
-    return built_fixed[0]
+def kit_dir(built_shipped):
+    return built_shipped[0]
+
+
+def test_fixed_is_the_shipped_design_with_the_searched_layout_pinned(kit_dir):
+    """tests/designs/bennett_fixed.yaml (and bennett_heavy_link.yaml, FIXED with a what-if mass
+    scale) stand for the shipped design without its search: the shipped kit folder's design.yaml
+    pins the layout the search chose, and it is FIXED's, the rest of the design being the same."""
+    ours, fixed = yaml.safe_load((kit_dir / "design.yaml").read_text()), yaml.safe_load(FIXED.read_text())
+    assert ours.pop("printer") == "printer.yaml" and fixed["printer"] == "fortus450mc"  # the kit's own copy of it
+    assert ours == {k: v for k, v in fixed.items() if k != "printer"}
+    heavy = yaml.safe_load((ROOT / "tests" / "designs" / "bennett_heavy_link.yaml").read_text())
+    assert heavy["checks"].pop("mass_scale") == {5: 1.1} and heavy == fixed
 
 
 def test_kit_folder(kit_dir):
@@ -130,9 +144,9 @@ def test_a_heavier_link_fails_the_check(capsys):
     assert fails and all(f["check"] == "balance" for f in fails)
 
 
-def test_report_page(tmp_path, built_fixed, prime_kit_cache):
-    prime_kit_cache(built_fixed[1], FIXED)  # the report's kit is the one `build` made of the same FIXED
-    assert main(["report", str(FIXED), "-o", str(tmp_path / "rep")]) == 0
+def test_report_page(tmp_path, built_shipped, prime_kit_cache):
+    prime_kit_cache(built_shipped[1], SHIPPED)  # the report's kit is the one `build` made of the same design
+    assert main(["report", str(SHIPPED), "-o", str(tmp_path / "rep")]) == 0
     page = (tmp_path / "rep" / "index.html").read_text()
     for words in ("Poses", "Balance", "Interference", "Base", "Bill of parts", "Bought parts", "link12", "support mm²",
                   "one slug short", "binder left out"):

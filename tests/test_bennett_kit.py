@@ -23,13 +23,14 @@ from partgen.geometry.measure import intersection
 from partgen.geometry.printing import bed_contact_area, flat_faces, overhang_area, shells
 from partgen.geometry.solid import mesh_arrays
 
-CFG = "tests/designs/bennett_fixed.yaml"
+CFG = "configs/bennett_butterfly.yaml"
 
 
 @pytest.fixture(scope="module")
 def kit(kit_of):
-    """The kit of CFG as `build` makes it, the session's (tests/test_bennett_cli.py shares it)."""
-    b = kit_of(CFG.removesuffix(".yaml"))
+    """The kit of the shipped design (CFG) as `build` makes it, the session's (tests/test_bennett_cli.py
+    and the manifest schema test share it)."""
+    b = kit_of("bennett_butterfly")
     assert b.loaded.spec == resolve_bennett(load_design(CFG))
     return b.kit
 

@@ -124,21 +124,21 @@ def test_bar_paths_mitre_gentle_bends_and_knuckle_sharp_ones():
 
     rng = np.random.default_rng(3)
     r = 3.9
-    bends = [math.radians(x) for x in (0.0, 2.0, 59.0, 61.0, 80.0)]
+    bends = [math.radians(x) for x in (0.0, 2.0, 29.0, 31.0, 80.0)]
     pts = _polyline(rng, r, bends)
     bars = [Bar(tuple(a), tuple(b), r) for a, b in zip(pts, pts[1:])]
     bars.insert(2, Bar(bars[1].p1, bars[1].p1, r))  # a zero-length bar is dropped
     paths, knees = bar_paths(bars, [pts[0]])
-    # 0°, 2° and 59° continue one path; 61° and 80° start new ones, each with a knuckle
+    # 0°, 2° and 29° continue one path; 31° and 80° start new ones, each with a knuckle
     assert [ks for ks, _ in paths] == [[0, 1, 3, 4], [5], [6]]
     assert [k.mitred for k in knees] == [True, True, True, False, False]
     # the knee at the boss's exit belongs to the bar leaving the boss (the checks exempt it with that
     # bar from the parts stacked on its pin), every other one to the later bar
     assert [k.bar for k in knees] == [0, 3, 4, 5, 6]
-    for k, b in zip(knees, (0.0, 2.0, 59.0)):
+    for k, b in zip(knees, (0.0, 2.0, 29.0)):
         assert k.radius == pytest.approx(r / math.cos(math.radians(b) / 2))  # covers the mitre's outer corner
     assert all(k.radius == pytest.approx(r + KNUCKLE_MM) for k in knees[3:])
-    assert MITRE_MAX_RAD == pytest.approx(math.radians(60))
+    assert MITRE_MAX_RAD == pytest.approx(math.radians(30))
     # a path through a boss centre ends there, without a knee
     paths, knees = bar_paths(bars[:2], [pts[1]])
     assert [ks for ks, _ in paths] == [[0], [1]] and knees == []

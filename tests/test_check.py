@@ -50,9 +50,11 @@ def test_default_design_passes_with_no_false_positives(default_kit):
             assert r["design_radial_gap_mm"] - 1e-6 <= r["radial_gap_mm"] <= r["design_radial_gap_mm"] + 0.0101, r
 
 
-def test_paper_design_fails_exactly_on_link_10():
+def test_paper_design_fails_exactly_on_link_10(kit_of, prime_kit_cache):
     """Table 3's D10/G11 = 21/15 at m = 1.5 on a 30 mm link: tip circles touch (Eq 12). The check
-    reports that and the near-contact it causes over the motion, and nothing else."""
+    reports that and the near-contact it causes over the motion, and nothing else. (check's kit is
+    the session's build of the design.)"""
+    prime_kit_cache(kit_of("butterfly_liu2017"))
     _, kit, result, _ = pipeline.check(ROOT / "configs" / "butterfly_liu2017.yaml", SAMPLES, write_plates=False)
     bad = fails(result)
     assert {f.check for f in bad} == {"design", "clearance"}
@@ -79,9 +81,15 @@ def test_negative_joint_clearance_jams_every_running_fit(default_kit):
     assert not fails(result, "interference") and not fails(result, "mesh")
 
 
-def test_part_larger_than_the_printer_fails_printability():
+@pytest.fixture(scope="module")
+def oversize():
+    """pipeline.check of tests/designs/oversize.yaml (its kit is built once: the CLI test reuses it)."""
+    return pipeline.check(DESIGNS / "oversize.yaml", SAMPLES, write_plates=False)
+
+
+def test_part_larger_than_the_printer_fails_printability(oversize):
     """B1 (230 mm long) on a 150 mm bed: it fits in no turn about z, not even on the diagonal."""
-    _, _, result, _ = pipeline.check(DESIGNS / "oversize.yaml", SAMPLES, write_plates=False)
+    _, _, result, _ = oversize
     bad = fails(result)
     assert {f.check for f in bad} == {"printability"}
     plates = [f for f in bad if "build plates" in f.message]
@@ -144,7 +152,7 @@ def test_meshing_pair_overlaps_zero_and_nudged_it_overlaps(default_kit):
         assert hit and max(r["worst_overlap_mm3"] for r in hit) > 0.001
 
 
-def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache):
+def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache, oversize):
     prime_kit_cache(kit_of("butterfly"))  # check's kit is the session's build (make_kit shares one per process)
     code = main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "24", "--json", "--plates",
                  str(tmp_path / "plates")])
@@ -155,6 +163,7 @@ def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache
     assert any(f.get("rule") == "bore-open" and f["message"].startswith("43 of 43 bores") for f in out["findings"])
     assert out["figures"]["plates"] >= 1
     assert sorted(p.name for p in (tmp_path / "plates").iterdir())[-1] == "plates.png"
+    prime_kit_cache(oversize.kit, DESIGNS / "oversize.yaml")  # the kit pipeline.check built of the same file
     code = main(["check", str(DESIGNS / "oversize.yaml"), "--samples", "8", "--json", "--no-plates"])
     out = json.loads(capsys.readouterr().out)
     assert code == 1 and out["ok"] is False
@@ -162,17 +171,15 @@ def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache
     assert main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "2"]) == 2
 
 
-def test_check_a_built_kit_folder_and_notice_tampering(capsys, kit_copy):
-    kit = kit_copy("butterfly")  # a fresh copy of the session's `partgen build` of it, ours to tamper with
-    # (not primed: check rebuilds the kit from the folder's own design.yaml and compares its STLs)
-    assert main(["check", str(kit), "--samples", "12", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["ok"] is True
-    assert (kit / "plates" / "plate1.3mf").is_file()
-    stl = kit / "B4.stl"
-    stl.write_bytes(stl.read_bytes()[:-50] + bytes(50))
-    assert main(["check", str(kit), "--samples", "12", "--json", "--no-plates"]) == 1
-    out = json.loads(capsys.readouterr().out)
-    assert any(f["check"] == "kit" and "B4" in f["parts"] for f in out["findings"])
+def test_check_a_built_kit_folder_and_notice_tampering(checked_default_kit):
+    """`check KITDIR` on a copy of the session's `partgen build` of the default design (not primed:
+    check rebuilds the kit from the folder's own design.yaml and compares its STLs), then on a copy
+    of it with B4.stl tampered: the session's runs of them (tests/test_plates.py reads the plates)."""
+    c = checked_default_kit
+    assert c["code"] == 0 and c["out"]["ok"] is True
+    assert (c["folder"] / "plates" / "plate1.3mf").is_file()
+    assert c["tampered_code"] == 1
+    assert any(f["check"] == "kit" and "B4" in f["parts"] for f in c["tampered_out"]["findings"])
 
 
 def test_sweep_samples_the_whole_cycle():

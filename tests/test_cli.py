@@ -27,11 +27,10 @@ def _files(folder: Path) -> dict[str, bytes]:
 
 
 @pytest.fixture(scope="module")
-def default_kit(tmp_path_factory) -> Path:
-    """The default design built once, through main() without -q."""
-    dest = tmp_path_factory.mktemp("d1") / "kit"
-    assert main(["build", str(DEFAULT), "-o", str(dest)]) == 0
-    return dest
+def default_kit(kit_of) -> Path:
+    """The default design's kit folder, the session's build of it (read only); the tests below
+    build it again through main() (without -q in test_build_is_byte_identical)."""
+    return kit_of("butterfly").dest
 
 
 @pytest.fixture(scope="module")
@@ -109,12 +108,16 @@ def test_console_script_builds_liu2017_with_warning(liu_kit):
     assert all((dest / p["file"]).is_file() for p in man["parts"])
 
 
-def test_console_script_missing_config():
-    proc = subprocess.run([str(SCRIPT), "build", "/nonexistent.yaml"], capture_output=True, text=True, timeout=60)
-    assert proc.returncode == 2
-    assert "Traceback" not in proc.stderr + proc.stdout
-    assert "/nonexistent.yaml" in proc.stderr
-    assert proc.stderr.startswith("partgen: error: ")
+def test_missing_config(capsys):
+    """In-process: the console script runs this same main() (its exit code passed on by entry(),
+    which test_console_script_builds_liu2017_with_warning runs for a build and test_printers'
+    test_version_and_python_m for exit 2), and a subprocess only added 2-3 s of imports."""
+    code = main(["build", "/nonexistent.yaml"])
+    out, err = capsys.readouterr()
+    assert code == 2
+    assert "Traceback" not in err + out
+    assert "/nonexistent.yaml" in err
+    assert err.startswith("partgen: error: ")
 
 
 @pytest.mark.parametrize("argv, code", [([], 2), (["build"], 2), (["--help"], 0), (["build", "--help"], 0),

@@ -288,25 +288,24 @@ def test_3mf_is_much_smaller_than_a_mesh_per_copy(items, layouts):
 
 
 @pytest.fixture(scope="module")
-def checked_kits(tmp_path_factory, kit_of):
-    """design -> (manifest, plates folder): each design built into a kit, then `check KITDIR` writes
-    its plates (default chain on the Fortus: 1 plate; on a 220 mm bed: several, B1 on the diagonal)."""
+def checked_kits(tmp_path_factory, checked_default_kit):
+    """design -> (manifest, plates folder, loaded): each design built into a kit, then `check KITDIR`
+    writes its plates (default chain on the Fortus: 1 plate; on a 220 mm bed: several, B1 on the
+    diagonal). The default's is the session's `check KITDIR` of a copy of its kit (tests/test_check.py
+    shares it)."""
     import json
 
     from partgen import pipeline
 
-    import shutil
-
     out = {}
-    for design in (ROOT / "configs" / "butterfly.yaml", DESIGNS / "desktop220.yaml"):
-        kit = tmp_path_factory.mktemp(design.stem) / "kit"
-        if design.parent == ROOT / "configs":  # a copy of the session's build of it
-            shutil.copytree(kit_of(design.stem).dest, kit)
-        else:
-            pipeline.build(design, kit)
-        loaded, _, result, folder = pipeline.check(kit, samples=4)
-        assert not [f for f in result.findings if "build plates" in f.message], result.findings
-        out[design.stem] = (json.loads((kit / "manifest.json").read_text()), folder, loaded)
+    kit = checked_default_kit["folder"]
+    assert not [f for f in checked_default_kit["out"]["findings"] if "build plates" in f["message"]]
+    out["butterfly"] = (json.loads((kit / "manifest.json").read_text()), kit / "plates", pipeline.load(kit))
+    kit = tmp_path_factory.mktemp("desktop220") / "kit"
+    pipeline.build(DESIGNS / "desktop220.yaml", kit)
+    loaded, _, result, folder = pipeline.check(kit, samples=4)
+    assert not [f for f in result.findings if "build plates" in f.message], result.findings
+    out["desktop220"] = (json.loads((kit / "manifest.json").read_text()), folder, loaded)
     return out
 
 

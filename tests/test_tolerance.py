@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from partgen import cluster, pipeline, studies
+from partgen import cluster, studies
 from partgen.cli.main import main
 from partgen.design.tolerance import add_tallies, chunk_sizes, run_chunk, summarise, wilson
 
@@ -20,12 +20,12 @@ FORTUS = 0.127
 
 
 @pytest.fixture(scope="module")
-def nominal():
-    """name -> (loaded, kit, nominal check result), each built and checked once (4 crank angles)."""
+def nominal(kit_of):
+    """name -> (loaded, kit, nominal check result): the session's build of each (``kit_of``), checked
+    once (4 crank angles)."""
     out = {}
     for name in ("butterfly", "butterfly_liu2017"):
-        loaded = pipeline.load(CONFIGS / f"{name}.yaml")
-        kit = pipeline.make_kit(loaded)
+        loaded, kit = kit_of(name)[:2]
         out[name] = (loaded, kit, loaded.mechanism.check(loaded.spec, kit, 4, None))
     return out
 
@@ -124,10 +124,11 @@ def test_resume_runs_only_the_missing_chunks(nominal, tmp_path):
             studies.sample(client, m, 2000, 6, claim_output(dest, "tolerance"), resume=True, chunk=400)
 
 
-def test_cli_running_clearance_below_the_accuracy_jams(nominal, tmp_path, capsys):
+def test_cli_running_clearance_below_the_accuracy_jams(kit_of, prime_kit_cache, tmp_path, capsys):
     """The paper's 0.1 mm diametral (0.05 radial) running fits on a ±0.127 mm printer: most prints
     jam at a joint, besides link 10; --max-jam-probability makes it exit 1; the result is written as
-    it goes. (The kit is the module's: make_kit hands out the one it built last.)"""
+    it goes. (The kit is the session's build of the same design.)"""
+    prime_kit_cache(kit_of("butterfly_liu2017"))
     out = tmp_path / "tol"
     code = main(["tolerance", str(CONFIGS / "butterfly_liu2017.yaml"), "--samples", "3000", "--workers", "1",
                  "--check-samples", "4", "--max-jam-probability", "0.5", "--json", "-o", str(out)])

@@ -117,27 +117,32 @@ def test_issue_designs_build_every_part_as_one_shell(tmp_path, changes):
 
 def test_write_kit_raises_mesh_error_naming_part_and_design_and_writes_nothing(tmp_path, monkeypatch):
     """A part that is two cubes sharing an edge: build must not write it, and the error is a bug
-    (MeshError, not a user's PartgenError) naming the part and the design."""
-    from partgen.mechanisms.gear_chain import kit as assembly_kit
-    from partgen.geometry.parts import Part
+    (MeshError, not a user's PartgenError) naming the part and the design. (On the gear pair, the
+    cheapest kit, renamed: write_kit, which refuses it, is the same for every mechanism.)"""
+    import dataclasses
 
-    real = assembly_kit.build_kit
+    from partgen.mechanisms.gear_pair import mechanism as pair
 
-    def broken(mech, params, progress=None, clock_error=None):
-        kit = real(mech, params, progress, clock_error)
+    real = pair.build_pair
+
+    def broken(spec, progress=None):
+        kit = real(spec, progress)
         two = m3d.Manifold.cube((10, 10, 10)) + m3d.Manifold.cube((10, 10, 10)).translate((10, 10, 0))
-        parts = tuple(Part(p.name, p.role, two) if p.name == "crank" else p for p in kit.parts)
-        return type(kit)(kit.mechanism, kit.params, kit.stack, parts, kit.static, kit.clock, kit.contacts)
+        parts = tuple(dataclasses.replace(p, solid=two) if p.name == "gear2" else p for p in kit.parts)
+        return dataclasses.replace(kit, parts=parts)
 
-    from partgen.mechanisms.gear_chain import mechanism as chain
-
-    monkeypatch.setattr(chain, "build_kit", broken)
+    monkeypatch.setattr(pair, "build_pair", broken)
+    d = yaml.safe_load((CONFIGS / "gear_pair.yaml").read_text())
+    d["name"] = "doomed_pair"
+    (tmp_path / "design").mkdir()
+    cfg = tmp_path / "design" / "doomed.yaml"
+    cfg.write_text(yaml.safe_dump(d))
     dest = tmp_path / "kit"
     with pytest.raises(MeshError) as e:
-        pipeline.build(CONFIGS / "butterfly.yaml", dest)
+        pipeline.build(cfg, dest)
     assert not issubclass(MeshError, PartgenError) and issubclass(MeshError, RuntimeError)
-    assert "crank" in str(e.value) and "butterfly" in str(e.value) and "more than two faces" in str(e.value)
-    assert not dest.exists() and list(tmp_path.iterdir()) == []
+    assert "gear2" in str(e.value) and "doomed_pair" in str(e.value) and "more than two faces" in str(e.value)
+    assert not dest.exists() and list(tmp_path.iterdir()) == [tmp_path / "design"]
 
 
 def test_cross_gear_is_one_shell_for_tooth_counts_and_sizes():

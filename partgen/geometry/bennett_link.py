@@ -102,12 +102,8 @@ class Cup:
 # meshed directly with one mitre ring at each corner: no boolean between them at all. At a sharper
 # bend the tubes end flat at the corner inside a knuckle ball KNUCKLE_MM fatter than the bar, which
 # crosses each tube at acos(r / (r + k)) (~16 deg for an 8 mm bar), never tangent. A bar ending in a
-# boss ends flat at the boss centre, inside its bore. Two tubes meeting in a knuckle still cross
-# each other, tangent where their circles touch (inside the ball) and at a shallow angle just
-# outside it when the bend is mild: at 30-40 degrees that crossing welded in float32 (2 sweep
-# designs of ~1,000; one traced: a bend of 37 degrees), so mitres take every bend up to 60 degrees (their outer
-# corner, r / cos(bend / 2) from the knee, ≤ 1.155 r, is in the knee's capsule).
-MITRE_MAX_RAD = math.radians(60.0)
+# boss ends flat at the boss centre, inside its bore.
+MITRE_MAX_RAD = math.radians(30.0)
 KNUCKLE_MM = 0.15
 
 
