@@ -254,15 +254,25 @@ def _print_pose(solid: Solid, p: BennettParams) -> tuple[PrintPose, np.ndarray]:
     return PrintPose(np.linalg.inv(pfb), o.overhang_mm2, o.contact_mm2, o.height_mm), pfb[:3]
 
 
+def _lay(solid: Solid, p: BennettParams) -> tuple[Solid, PrintPose]:
+    """The part laid on the bed, and how."""
+    pose, pfb = _print_pose(solid, p)
+    return solid.transform(pfb), pose
+
+
 def _weigh(solid: Solid, p: BennettParams) -> tuple[Solid, PrintPose, LinkMass]:
     """The part laid on the bed, how, and its masses (centres back in the body frame)."""
-    pose, pfb = _print_pose(solid, p)
-    on_bed = solid.transform(pfb)
+    on_bed, pose = _lay(solid, p)
+    return on_bed, pose, _mass(on_bed, pose, p)
+
+
+def _mass(on_bed: Solid, pose: PrintPose, p: BennettParams) -> LinkMass:
+    """The masses of a part laid on the bed, centres back in the body frame."""
     mm = printed_mass(on_bed, p.density, print_settings(p))
     T = pose.body_from_print
     back = lambda c: T[:3, :3] @ np.asarray(c, float) + T[:3, 3]  # noqa: E731
-    return on_bed, pose, LinkMass(mm.solid_mass, back(mm.solid_centre), mm.mass, back(mm.centre), mm.shell_volume,
-                                  mm.interior_volume, back(mm.interior_centre))
+    return LinkMass(mm.solid_mass, back(mm.solid_centre), mm.mass, back(mm.centre), mm.shell_volume,
+                    mm.interior_volume, back(mm.interior_centre))
 
 
 def _build(p: BennettParams, lay: Layout, say, figures: dict, cache: dict, rounds: int = 8) -> BennettKit:
@@ -278,11 +288,12 @@ def _build(p: BennettParams, lay: Layout, say, figures: dict, cache: dict, round
         key = ("link", tuple(bosses), tuple(bars), tuple(cw), p.segments)
         hit = cache.get(key)
         if hit is None:
-            for phase in LINK_PHASES:  # the first whose STL, as written, stays one shell
+            for phase in LINK_PHASES:  # the first whose STL, as written, stays one shell (weighed once, after)
                 solid = link_solid(bosses, bars, cw, p.segments, phase)
-                on_bed, pose, lm = _weigh(solid, p)
+                on_bed, pose = _lay(solid, p)
                 if float32_sound(*print_arrays(on_bed)[:2]):
                     break
+            lm = _mass(on_bed, pose, p)
             moving = 0.0
             if cw:  # the cup (a cylinder less its pocket) and the tube from its bar's exit to it (ends flat there)
                 c, carry = cw[0], bars[-1]
