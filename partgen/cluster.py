@@ -18,9 +18,25 @@ from typing import Callable, Iterable
 
 from .errors import OptionError
 
-__all__ = ["CONNECT_TIMEOUT_S", "cluster", "run", "default_workers", "Counter"]
+__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "run", "default_workers", "Counter"]
 
 CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (probe ≤ 2 s, then ≤ 4 s), never a hang
+# glibc malloc settings of a local cluster's worker processes. Dask's nanny sets
+# MALLOC_TRIM_THRESHOLD_=64 KiB, and setting it switches off glibc's sliding mmap threshold: every
+# array over 128 KiB (a 1,000-sample chunk's draws are 1.4 MB) was then mapped fresh and
+# page-faulted in on every task, and a chunk computed in 11-14 ms on a worker against 5.9 ms in a
+# plain process. Arrays up to 32 MiB now come from the heap, and up to 32 MiB of free heap stays
+# with the worker between tasks (benchmarks/README.md, bench_tolerance.py).
+WORKER_MALLOC = {"MALLOC_MMAP_THRESHOLD_": 32 << 20, "MALLOC_TRIM_THRESHOLD_": 32 << 20}
+# Dask's housekeeping, slowed for a local cluster of one-thread workers (it has no dashboard to
+# feed). Idle, the client's process (scheduler and nannies) used 43 ms of CPU a second and each
+# worker 30-37 ms, taken from the tasks on a machine whose every core runs a worker; the workers'
+# statistical profiler also samples the running task's stack every 10 ms. Here the profiler is
+# off and the event loops' health tick and the system monitor run every 1 and 2 s (not 20 and
+# 500 ms): idle, 13-17 and 3-10 ms a second. The memory monitor keeps its 100 ms, so a worker
+# that runs away is still stopped in time.
+LOCAL_QUIET = {"distributed.worker.profile.enabled": False, "distributed.admin.tick.interval": "1s",
+               "distributed.admin.system-monitor.interval": "2s"}
 
 
 def _reachable(address: str) -> str | None:
@@ -89,7 +105,9 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
     from distributed import Client, LocalCluster
 
     with dask.config.set({"distributed.comm.timeouts.connect": f"{CONNECT_TIMEOUT_S}s",
-                          "distributed.admin.tick.limit": "1h"}):
+                          "distributed.admin.tick.limit": "1h",
+                          **{f"distributed.nanny.pre-spawn-environ.{k}": v for k, v in WORKER_MALLOC.items()},
+                          **(LOCAL_QUIET if scheduler is None else {})}):
         if scheduler is not None:
             why = _reachable(scheduler)
             if why is not None:
@@ -148,10 +166,13 @@ def run(client, fn: Callable, shared, tasks: Iterable[tuple], on_result: Callabl
     columns = list(zip(*(args for _, args in tasks)))
     # one call submits them all; results come back in batches as they finish (with_results)
     futures = client.map(fn, [big] * len(tasks), *columns, key=keys, pure=False)
+    done = 0
     try:
         for fut, value in as_completed(futures, with_results=True, loop=client.loop):
             on_result(by_key[fut.key], value)
+            done += 1
             if progress:
                 progress()
     finally:
-        client.cancel(list(futures))
+        if done < len(futures):  # stopped early (an error, ^C): the rest must not run on
+            client.cancel(list(futures))

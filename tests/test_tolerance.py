@@ -211,3 +211,21 @@ def test_the_gear_pair_jams_at_its_mesh_as_the_normal_tail_says(kit_of):
     assert run_local(model(0.0), 2000)["overall"]["jams"] == 0
     loose = run_local(model(0.6), 4000)  # ±0.6 mm: a 0.2 mm radial gap has σ 0.14 mm, ~8 % grip their post
     assert all(u["jams"] > 0 for u in loose["units"] if u["group"] == "joint")
+
+
+def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task():
+    """Dask's nanny sets MALLOC_TRIM_THRESHOLD_, which switches off glibc's sliding mmap threshold:
+    every array of a task was then mapped and page-faulted in afresh (a chunk ran ~2x slower on a
+    worker than in-process). A local cluster's worker processes get cluster.WORKER_MALLOC, and
+    Dask's housekeeping as cluster.LOCAL_QUIET sets it (no profiler sampling the tasks)."""
+    import os
+
+    import dask
+
+    def seen():
+        return ({k: os.environ.get(k) for k in cluster.WORKER_MALLOC},
+                {k: dask.config.get(k) for k in cluster.LOCAL_QUIET})
+    with cluster.cluster(1, processes=True) as client:
+        got = list(client.run(seen).values())
+    assert got == [({k: str(v) for k, v in cluster.WORKER_MALLOC.items()}, cluster.LOCAL_QUIET)]
+    assert cluster.LOCAL_QUIET["distributed.worker.profile.enabled"] is False
