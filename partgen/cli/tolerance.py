@@ -52,7 +52,7 @@ def add_parser(sub) -> None:
     p.add_argument("--max-jam-probability", type=_unit_float, default=None, metavar="P",
                    help="exit 1 when the probability that the kit jams is above P")
     p.add_argument("--chunk", type=bounded_int(1, 10_000_000), default=None,
-                   help="samples per task (default 1000, or a 16th of a study over 16,000 samples, at most 100,000; "
+                   help="samples per task (default 5000, or a 16th of a study over 80,000 samples, at most 100,000; "
                         "with the seed it fixes the result: raise it for many workers)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted run with the same settings")
     p.add_argument("-o", "--out", default=None, help="folder for chunks.jsonl and result.json "
