@@ -18,7 +18,7 @@ from typing import Callable, Iterable
 
 from .errors import OptionError
 
-__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "run", "default_workers", "Counter"]
+__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "starting", "run", "default_workers", "Counter"]
 
 CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (probe ≤ 2 s, then ≤ 4 s), never a hang
 # glibc malloc settings of a local cluster's worker processes. Dask's nanny sets
@@ -127,6 +127,49 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
         finally:
             client.close()
             lc.close()
+
+
+@contextlib.contextmanager
+def starting(workers: int | None = None, scheduler: str | None = None, processes: bool | None = None):
+    """``cluster(...)`` that starts while the caller goes on: yields ``get()``, which returns the
+    connected client once it is up (and raises what starting it raised). A local cluster starts in
+    a thread, so its worker processes spawn while this process builds and checks the kit; an
+    existing ``scheduler`` is connected to at once, so a wrong address still fails before any work."""
+    if scheduler is not None:
+        with cluster(workers, scheduler, processes) as client:
+            yield lambda: client
+        return
+    import threading
+
+    box: dict = {}
+    up, done = threading.Event(), threading.Event()
+
+    def hold():
+        try:
+            with cluster(workers, None, processes) as client:
+                box["client"] = client
+                up.set()
+                done.wait()
+        except BaseException as e:  # noqa: BLE001 - raised again by get()
+            box["error"] = e
+        finally:
+            up.set()
+
+    t = threading.Thread(target=hold, name="partgen-cluster", daemon=True)
+    t.start()
+
+    def get():
+        up.wait()
+        if "client" not in box:
+            raise box.get("error") or RuntimeError("the local cluster did not start")
+        return box["client"]
+    try:
+        yield get
+    finally:
+        done.set()
+        t.join()
+        if "error" in box and "client" in box:  # it started, but closing it failed
+            raise box["error"]
 
 
 class Counter:

@@ -229,3 +229,28 @@ def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task():
         got = list(client.run(seen).values())
     assert got == [({k: str(v) for k, v in cluster.WORKER_MALLOC.items()}, cluster.LOCAL_QUIET)]
     assert cluster.LOCAL_QUIET["distributed.worker.profile.enabled"] is False
+
+
+def test_a_local_cluster_starts_beside_the_callers_work(monkeypatch):
+    """cluster.starting: the caller goes on while the cluster starts; get() gives the client, or
+    raises what starting it raised."""
+    import threading
+
+    started = threading.Event()
+    real = cluster.cluster
+
+    def slow(*a, **k):
+        if not started.wait(5):  # the cluster starts only once the caller has gone on
+            raise RuntimeError("the caller waited for the cluster to start")
+        return real(*a, **k)
+    monkeypatch.setattr(cluster, "cluster", slow)
+    with cluster.starting(1, processes=False) as get:
+        started.set()  # reached before any client exists
+        assert get().submit(sum, [1, 2]).result() == 3
+
+    def broken(*a, **k):
+        raise RuntimeError("no cores today")
+    monkeypatch.setattr(cluster, "cluster", broken)
+    with pytest.raises(RuntimeError, match="no cores today"):
+        with cluster.starting(1, processes=False) as get:
+            get()

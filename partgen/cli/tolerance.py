@@ -92,7 +92,7 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
                      f"({', '.join(stale[:3])}{' …' if len(stale) > 3 else ''}): this is the study of the design; rebuild the kit")
     s = r["seconds"]
     lines.append(f"{r['chunks']} chunks on {r['workers']} worker(s) in {s['samples']:.2f} s (nominal check "
-                 f"{s['nominal_check']:.1f} s, cluster start {s['cluster']:.1f} s)"
+                 f"{s['nominal_check']:.1f} s; then {s['cluster_wait']:.1f} s waiting for the cluster)"
                  + (f"; {r['resumed_chunks']} chunks resumed" if r["resumed_chunks"] else "")
                  + (f"; wrote {dest}/result.json" if dest else ""))
     return "\n".join(lines)
