@@ -20,7 +20,7 @@ from .errors import OptionError
 
 __all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "starting", "run", "default_workers", "Counter"]
 
-CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (probe ≤ 2 s, then ≤ 4 s), never a hang
+CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (a TCP probe ≤ 2 s, then Dask's protocol ≤ 4 s), never a hang
 # glibc malloc settings of a local cluster's worker processes. Dask's nanny sets
 # MALLOC_TRIM_THRESHOLD_=64 KiB, and setting it switches off glibc's sliding mmap threshold: every
 # array over 128 KiB (a 1,000-sample chunk's draws are 1.4 MB) was then mapped fresh and
@@ -63,6 +63,47 @@ def _reachable(address: str) -> str | None:
         return e.strerror or type(e).__name__
 
 
+def _identify(address: str) -> str | None:
+    """Why no Dask scheduler answers at ``address`` (None: one does), asked in Dask's own protocol
+    (its handshake, then ``identity``) within CONNECT_TIMEOUT_S and before any Client exists: a port
+    that answers in another protocol made the Client read a garbage frame length (a MemoryError
+    for 3 EiB) and left a half-made Client whose clean-up hung for 8 s and printed a traceback."""
+    import asyncio
+    import threading
+
+    got: dict = {}
+
+    async def ask():
+        from distributed.comm import connect
+
+        comm = await connect(address, timeout=CONNECT_TIMEOUT_S)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    def probe():
+        try:
+            got["reply"] = asyncio.run(asyncio.wait_for(ask(), CONNECT_TIMEOUT_S))
+        except BaseException as e:  # noqa: BLE001 - any failure says: no scheduler here
+            got["error"] = e
+    t = threading.Thread(target=probe, name="partgen-identify", daemon=True)
+    t.start()
+    t.join(CONNECT_TIMEOUT_S + 0.5)
+    if "reply" in got:
+        reply = got["reply"]
+        kind = reply.get("type") if isinstance(reply, dict) else None
+        if kind == "Scheduler":
+            return None
+        return f"a Dask {kind} answers there, not a scheduler" if isinstance(kind, str) else \
+            "something answers there, but not as a Dask scheduler"
+    e = got.get("error")
+    if e is None or isinstance(e, (TimeoutError, asyncio.TimeoutError)) or "timed out" in str(e).lower():
+        return f"the port takes connections but nothing answered in Dask's protocol within {CONNECT_TIMEOUT_S:g} s"
+    return "something answers there, but not in Dask's protocol"
+
+
 def _connect(Client, address: str):
     """A Client of the scheduler at ``address``, or ``OptionError`` when none answers within
     CONNECT_TIMEOUT_S: the connection is made in a thread and waited for, because a port that
@@ -84,6 +125,16 @@ def _connect(Client, address: str):
     e = got.get("error")
     why = "no answer" if e is None else f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}"
     raise OptionError("--scheduler", address, f"no Dask scheduler answered there within {CONNECT_TIMEOUT_S:g} s ({why})")
+
+
+def _has_workers(client, address: str) -> None:
+    """``OptionError`` on --scheduler when no worker has joined the scheduler within
+    CONNECT_TIMEOUT_S (the tasks would wait for one forever, or fail deep inside Dask)."""
+    try:
+        client.wait_for_workers(1, timeout=CONNECT_TIMEOUT_S)
+    except TimeoutError:
+        raise OptionError("--scheduler", address, f"the Dask scheduler there has no workers (none joined within "
+                          f"{CONNECT_TIMEOUT_S:g} s): start some, e.g. `dask worker {address} --nthreads 1`") from None
 
 
 def default_workers() -> int:
@@ -112,15 +163,22 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
             why = _reachable(scheduler)
             if why is not None:
                 raise OptionError("--scheduler", scheduler, f"cannot reach a Dask scheduler there ({why})")
+            why = _identify(scheduler)
+            if why is not None:
+                raise OptionError("--scheduler", scheduler, f"no Dask scheduler there ({why})")
             client = _connect(Client, scheduler)
             try:
+                _has_workers(client, scheduler)
                 yield client
             finally:
                 client.close()
             return
         lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1,
                           processes=(workers or default_workers()) > 1 if processes is None else processes,
-                          dashboard_address=None, silence_logs=logging.CRITICAL + 1)  # not even the shutdown's comm errors
+                          # its HTTP server on a free local port: with None it took 8787 and, when a
+                          # notebook's cluster had it, warned the user on stderr
+                          dashboard_address="127.0.0.1:0",
+                          silence_logs=logging.CRITICAL + 1)  # not even the shutdown's comm errors
         client = Client(lc, set_as_default=False)
         try:
             yield client

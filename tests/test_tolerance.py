@@ -213,7 +213,7 @@ def test_the_gear_pair_jams_at_its_mesh_as_the_normal_tail_says(kit_of):
     assert all(u["jams"] > 0 for u in loose["units"] if u["group"] == "joint")
 
 
-def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task():
+def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task(recwarn):
     """Dask's nanny sets MALLOC_TRIM_THRESHOLD_, which switches off glibc's sliding mmap threshold:
     every array of a task was then mapped and page-faulted in afresh (a chunk ran ~2x slower on a
     worker than in-process). A local cluster's worker processes get cluster.WORKER_MALLOC, and
@@ -225,9 +225,21 @@ def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task():
     def seen():
         return ({k: os.environ.get(k) for k in cluster.WORKER_MALLOC},
                 {k: dask.config.get(k) for k in cluster.LOCAL_QUIET})
-    with cluster.cluster(1, processes=True) as client:
-        got = list(client.run(seen).values())
+    import socket
+
+    busy = socket.socket()  # Dask's default HTTP port taken, as by a notebook's cluster: no warning
+    try:
+        busy.bind(("0.0.0.0", 8787))
+        busy.listen(1)
+    except OSError:
+        pass  # taken already
+    try:
+        with cluster.cluster(1, processes=True) as client:
+            got = list(client.run(seen).values())
+    finally:
+        busy.close()
     assert got == [({k: str(v) for k, v in cluster.WORKER_MALLOC.items()}, cluster.LOCAL_QUIET)]
+    assert not [w for w in recwarn if "already in use" in str(w.message)]
     assert cluster.LOCAL_QUIET["distributed.worker.profile.enabled"] is False
 
 
@@ -254,3 +266,62 @@ def test_a_local_cluster_starts_beside_the_callers_work(monkeypatch):
     with pytest.raises(RuntimeError, match="no cores today"):
         with cluster.starting(1, processes=False) as get:
             get()
+
+
+def _server(reply: bytes | None):
+    """A local TCP port that takes connections and answers ``reply`` (None: never answers)."""
+    import socket
+    import threading
+
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(8)
+    held = []
+
+    def serve():
+        while True:
+            try:
+                conn, _ = srv.accept()
+            except OSError:
+                return
+            held.append(conn)
+            if reply is not None:
+                conn.sendall(reply)
+    threading.Thread(target=serve, daemon=True).start()
+    return srv, held
+
+
+def test_scheduler_addresses_that_are_no_usable_dask_scheduler_are_exit_2(tmp_path, capsys, monkeypatch):
+    """A port that answers another protocol (it made Dask allocate 3 EiB, then hang 8 s in a
+    half-made Client's clean-up and print a traceback), one that never answers, a Dask worker's
+    address, and a scheduler with no workers: each is one message on --scheduler, exit 2, no
+    traceback, within the time limit, nothing written."""
+    from distributed import LocalCluster
+
+    monkeypatch.setattr(cluster, "CONNECT_TIMEOUT_S", 1.0)
+    out = tmp_path / "tol"
+    http, held = _server(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4)
+    silent, held2 = _server(None)
+    lc = LocalCluster(n_workers=1, processes=False, dashboard_address=None)
+    empty = LocalCluster(n_workers=0, processes=False, dashboard_address=None)
+    try:
+        cases = {f"tcp://127.0.0.1:{http.getsockname()[1]}": "not in Dask's protocol",
+                 f"tcp://127.0.0.1:{silent.getsockname()[1]}": "nothing answered",
+                 lc.workers[0].address: "a Dask Worker answers there",
+                 empty.scheduler_address: "has no workers"}
+        for address, why in cases.items():
+            t0 = time.perf_counter()
+            assert main(["tolerance", str(CONFIGS / "butterfly.yaml"), "--samples", "10", "--scheduler", address,
+                         "-o", str(out)]) == 2
+            assert time.perf_counter() - t0 < 10 * cluster.CONNECT_TIMEOUT_S / 4  # the 10 s limit, scaled
+            err = capsys.readouterr().err
+            assert why in err and "--scheduler" in err and "Traceback" not in err, err
+            assert len(err.strip().splitlines()) == 1, err
+            assert not out.exists()
+    finally:
+        for s in (http, silent):
+            s.close()
+        for c in held + held2:
+            c.close()
+        lc.close()
+        empty.close()
