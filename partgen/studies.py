@@ -31,6 +31,7 @@ __all__ = ["CHUNK", "default_chunk", "ToleranceRun", "tolerance", "sample", "nom
 CHUNK = 5000  # samples per task, at least: ~30 ms of numpy, ~10x the ~3 ms of CPU the local client and scheduler spend on a task
 TASKS = 16  # a study of many samples is cut into about this many tasks (at most MAX_CHUNK samples each)
 MAX_CHUNK = 100_000
+MAX_POINTS = 100_000  # design points of one sweep
 
 
 def default_chunk(samples: int) -> int:
@@ -218,7 +219,9 @@ class Vary:
         import numpy as np
 
         v = np.linspace(self.start, self.stop, self.steps) if self.steps > 1 else np.array([self.start])
-        return [int(round(x)) for x in v] if self.integer else [float(round(x, 9)) for x in v]
+        if self.integer:  # more steps than whole numbers in the range: each value once
+            return list(dict.fromkeys(int(round(x)) for x in v))
+        return [float(round(x, 9)) for x in v]
 
 
 def parse_vary(text: str) -> Vary:
@@ -343,9 +346,10 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
             except ConfigError as e:
                 raise OptionError("--vary", v.text, f"{v.key}={val:g} is not a valid design value: "
                                   f"{getattr(e, 'problem', e)}") from None
+    count = random if random is not None else math.prod(len(v.values()) for v in vs)
+    if count > MAX_POINTS:  # counted before the grid is made: three --vary of 10,000 steps are 10¹² points
+        raise OptionError("--vary", varies[-1], f"{count:,} points: at most {MAX_POINTS:,}")
     points = sweep_points(vs, random, seed)
-    if len(points) > 100_000:
-        raise OptionError("--vary", varies[-1], f"{len(points):,} points: at most 100,000")
     claim = pipeline.output_claim(raw, Path(dest) if dest else Path("out") / raw.design.name / "sweep", "sweep", None,
                                   "-o")
     shared = {"config": str(config), "sets": tuple(over.sets), "printer": over.printer, "check_samples": check_samples,

@@ -17,6 +17,7 @@ def test_grid_and_random_points():
     pts = sweep_points(v)
     assert len(pts) == 9 and pts[0] == {"gears.module_mm": 1.5, "gears.teeth[0]": 15}
     assert {p["gears.teeth[0]"] for p in pts} == {15, 17, 19}
+    assert parse_vary("gears.teeth[0]=15:17:9").values() == [15, 16, 17]  # whole numbers: each once
     r = sweep_points(v, random=20, seed=4)
     assert r == sweep_points(v, random=20, seed=4) and len(r) == 20
     assert all(1.5 <= p["gears.module_mm"] <= 2.5 and isinstance(p["gears.teeth[0]"], int) for p in r)
@@ -49,6 +50,9 @@ def test_sweep_builds_and_checks_every_point(tmp_path, capsys):
     (["--vary", "gears.module_mm=-1:2:3"], "module_mm"),              # outside the schema's range
     (["--vary", "gears.module_mm=1:2:3", "--tolerance-samples", "0"], "tolerance-samples"),
     (["--vary", "gears.module_mm=1:2:3", "--random", "0"], "random"),
+    # 10,000 × 11 × 10,000 points: refused by their count, before any grid is made (it hung)
+    (["--vary", "gears.module_mm=1.5:2.5:10000", "--vary", "gears.teeth[0]=15:25:10000", "--vary",
+      "gears.face_width_mm=6:10.5:10000"], "1,100,000,000 points: at most 100,000"),
 ])
 def test_bad_input_writes_nothing(tmp_path, capsys, args, what):
     out = tmp_path / "sweep"
