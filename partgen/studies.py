@@ -32,6 +32,8 @@ CHUNK = 5000  # samples per task, at least: ~30 ms of numpy, ~10x the ~3 ms of C
 TASKS = 16  # a study of many samples is cut into about this many tasks (at most MAX_CHUNK samples each)
 MAX_CHUNK = 100_000
 MAX_POINTS = 100_000  # design points of one sweep
+TASK_MAX_BYTES = 2 << 30  # a task's arrays (run_chunk's draws, margins and their temporaries), at most
+TASK_BYTES_PER_TERM = 12  # bytes a sample holds per feature and per margin at run_chunk's peak (measured: 11.3)
 
 
 def default_chunk(samples: int) -> int:
@@ -110,6 +112,13 @@ def sample(client, model: MarginModel, samples: int, seed: int, claim=None, resu
     Returns the tallies added in chunk order, and facts of the run (chunks, resumed_chunks,
     workers, seconds, dest)."""
     chunk = chunk or default_chunk(samples)
+    F, K = model.coeff.shape
+    need = min(chunk, samples) * (F + K) * TASK_BYTES_PER_TERM
+    if need > TASK_MAX_BYTES:  # before anything is written or sent
+        most = TASK_MAX_BYTES // ((F + K) * TASK_BYTES_PER_TERM)
+        raise OptionError("--chunk", str(chunk), f"a task of {min(chunk, samples):,} samples of this model ({F} "
+                          f"features, {K} margins) would need ~{need / 1e9:.1f} GB on its worker: at most "
+                          f"{most:,} samples a task")
     sizes = chunk_sizes(samples, chunk)
     header = {**(header or {}), "model": model.digest(), "seed": int(seed), "samples": int(samples),
               "chunk": int(chunk)}

@@ -325,3 +325,14 @@ def test_scheduler_addresses_that_are_no_usable_dask_scheduler_are_exit_2(tmp_pa
             c.close()
         lc.close()
         empty.close()
+
+
+def test_a_chunk_too_big_for_a_worker_is_refused_before_anything_is_written(tmp_path, capsys):
+    """--chunk 10,000,000 of the chain's model (~290 features and margins) would hold ~35 GB on one
+    worker: exit 2 on --chunk, nothing written."""
+    out = tmp_path / "tol"
+    assert main(["tolerance", str(CONFIGS / "butterfly.yaml"), "--samples", "20000000", "--chunk", "10000000",
+                 "--check-samples", "8", "--workers", "1", "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "--chunk" in err and "GB" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
