@@ -18,7 +18,7 @@ from typing import Callable, Iterable
 
 from .errors import OptionError
 
-__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "starting", "run", "default_workers", "Counter"]
+__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "starting", "run", "default_workers", "local_workers", "OVERSUBSCRIBE", "Counter"]
 
 CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (a TCP probe ≤ 2 s, then Dask's protocol ≤ 4 s), never a hang
 # glibc malloc settings of a local cluster's worker processes. Dask's nanny sets
@@ -152,6 +152,8 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
     CONNECT_TIMEOUT_S), or to a new ``LocalCluster`` of ``workers`` single-threaded workers
     (``processes``: True, worker processes; False, threads of this process, quick to start; None,
     processes for more than one worker, a thread for one)."""
+    if scheduler is None:
+        local_workers(workers)
     import dask
     from distributed import Client, LocalCluster
 
@@ -173,8 +175,8 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
             finally:
                 client.close()
             return
-        lc = LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1,
-                          processes=(workers or default_workers()) > 1 if processes is None else processes,
+        n = local_workers(workers)
+        lc = LocalCluster(n_workers=n, threads_per_worker=1, processes=n > 1 if processes is None else processes,
                           # its HTTP server on a free local port: with None it took 8787 and, when a
                           # notebook's cluster had it, warned the user on stderr
                           dashboard_address="127.0.0.1:0",
@@ -187,6 +189,22 @@ def cluster(workers: int | None = None, scheduler: str | None = None, processes:
             lc.close()
 
 
+OVERSUBSCRIBE = 4  # a local cluster has at most this many workers per core
+
+
+def local_workers(workers: int | None) -> int:
+    """The workers of a local cluster: ``workers``, or one per core; ``OptionError`` on --workers
+    beyond OVERSUBSCRIBE per core (each is a process of ~100 MB that only waits for a core: 1,024 of
+    them would take ~100 GB)."""
+    cores = default_workers()
+    n = workers or cores
+    if n > OVERSUBSCRIBE * cores:
+        raise OptionError("--workers", str(n), f"this machine has {cores} core{'s' if cores > 1 else ''}: a local "
+                          f"cluster of more than {OVERSUBSCRIBE * cores} workers only waits for them (use --scheduler "
+                          "to run on more machines)")
+    return n
+
+
 @contextlib.contextmanager
 def starting(workers: int | None = None, scheduler: str | None = None, processes: bool | None = None):
     """``cluster(...)`` that starts while the caller goes on: yields ``get()``, which returns the
@@ -197,6 +215,7 @@ def starting(workers: int | None = None, scheduler: str | None = None, processes
         with cluster(workers, scheduler, processes) as client:
             yield lambda: client
         return
+    local_workers(workers)  # a wrong --workers fails now, not after the caller's work
     import threading
 
     box: dict = {}

@@ -336,3 +336,17 @@ def test_a_chunk_too_big_for_a_worker_is_refused_before_anything_is_written(tmp_
     err = capsys.readouterr().err
     assert "--chunk" in err and "GB" in err and len(err.strip().splitlines()) == 1
     assert not out.exists()
+
+
+@pytest.mark.parametrize("command", [["tolerance", str(CONFIGS / "butterfly.yaml"), "--samples", "100"],
+                                     ["sweep", str(CONFIGS / "gear_pair.yaml"), "--vary", "gears.module_mm=2:2.5:2"]])
+def test_more_local_workers_than_the_machine_can_run_is_exit_2_at_once(command, tmp_path, capsys, monkeypatch):
+    """--workers 1000 was 1,000 worker processes (~100 GB); beyond 4 a core is refused before any work."""
+    monkeypatch.setattr(cluster, "default_workers", lambda: 2)
+    out = tmp_path / "out"
+    t0 = time.perf_counter()
+    assert main([*command, "--workers", "9", "-o", str(out)]) == 2
+    assert time.perf_counter() - t0 < 2  # before the kit is built
+    err = capsys.readouterr().err
+    assert "--workers 9" in err and "more than 8 workers" in err and len(err.strip().splitlines()) == 1
+    assert not out.exists()
