@@ -47,12 +47,12 @@ def _reachable(address: str) -> str | None:
 
     if "://" not in address:
         address = "tcp://" + address
-    u = urlsplit(address)
-    if u.scheme not in ("tcp", "tls"):
-        return None  # other transports: leave it to Dask
     try:
+        u = urlsplit(address)
+        if u.scheme not in ("tcp", "tls"):  # inproc:// is one process's; ucx:// needs ucx-py
+            return f"partgen connects to a scheduler at tcp:// or tls://, not {u.scheme}://"
         host, port = u.hostname, u.port
-    except ValueError as e:
+    except ValueError as e:  # "tcp://[::1", a port out of range
         return f"not an address: {e}"
     if not host or not port:
         return "give it as tcp://HOST:PORT"
@@ -75,8 +75,10 @@ def _identify(address: str) -> str | None:
 
     async def ask():
         from distributed.comm import connect
+        from distributed.security import Security
 
-        comm = await connect(address, timeout=CONNECT_TIMEOUT_S)
+        # tls://: the certificates Dask's config names, as the Client would use them
+        comm = await connect(address, timeout=CONNECT_TIMEOUT_S, **Security().get_connection_args("client"))
         try:
             await comm.write({"op": "identity", "reply": True})
             return await comm.read()

@@ -350,3 +350,16 @@ def test_more_local_workers_than_the_machine_can_run_is_exit_2_at_once(command, 
     err = capsys.readouterr().err
     assert "--workers 9" in err and "more than 8 workers" in err and len(err.strip().splitlines()) == 1
     assert not out.exists()
+
+
+@pytest.mark.parametrize("address, why", [("tcp://[::1", "not an address"), ("tcp://127.0.0.1:99999", "not an address"),
+                                          ("inproc://x", "not inproc://"), ("ucx://127.0.0.1:8786", "not ucx://"),
+                                          ("tcp://", "tcp://HOST:PORT")])
+def test_scheduler_addresses_that_are_not_addresses_are_exit_2(address, why, tmp_path, capsys):
+    """"tcp://[::1" was an internal error with a traceback; other transports got Dask's own riddles."""
+    out = tmp_path / "tol"
+    assert main(["tolerance", str(CONFIGS / "butterfly.yaml"), "--samples", "10", "--scheduler", address,
+                 "-o", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert why in err and "Traceback" not in err and len(err.strip().splitlines()) == 1, err
+    assert not out.exists()
