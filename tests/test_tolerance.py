@@ -302,8 +302,8 @@ def test_scheduler_addresses_that_are_no_usable_dask_scheduler_are_exit_2(tmp_pa
     out = tmp_path / "tol"
     http, held = _server(b"HTTP/1.1 400 Bad Request\r\nContent-Length: 0\r\n\r\n" * 4)
     silent, held2 = _server(None)
-    lc = LocalCluster(n_workers=1, processes=False, dashboard_address="127.0.0.1:0")
-    empty = LocalCluster(n_workers=0, processes=False, dashboard_address="127.0.0.1:0")
+    lc = LocalCluster(n_workers=1, processes=False, protocol="tcp", dashboard_address="127.0.0.1:0")
+    empty = LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address="127.0.0.1:0")
     try:
         cases = {f"tcp://127.0.0.1:{http.getsockname()[1]}": "not in Dask's protocol",
                  f"tcp://127.0.0.1:{silent.getsockname()[1]}": "nothing answered",
