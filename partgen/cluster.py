@@ -18,7 +18,8 @@ from typing import Callable, Iterable
 
 from .errors import OptionError
 
-__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "cluster", "starting", "run", "default_workers", "local_workers", "OVERSUBSCRIBE", "Counter"]
+__all__ = ["CONNECT_TIMEOUT_S", "WORKER_MALLOC", "LOCAL_QUIET", "OVERSUBSCRIBE", "cluster", "starting", "run",
+           "default_workers", "local_workers", "Counter"]
 
 CONNECT_TIMEOUT_S = 4.0  # an unreachable --scheduler is an error within 10 s (a TCP probe ≤ 2 s, then Dask's protocol ≤ 4 s), never a hang
 # glibc malloc settings of a local cluster's worker processes. Dask's nanny sets
@@ -247,8 +248,8 @@ def starting(workers: int | None = None, scheduler: str | None = None, processes
     finally:
         done.set()
         t.join()
-        if "error" in box and "client" in box:  # it started, but closing it failed
-            raise box["error"]
+    if "error" in box and "client" in box:  # it started, but closing it failed (and nothing else did)
+        raise box["error"]
 
 
 class Counter:
