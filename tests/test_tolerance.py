@@ -219,14 +219,13 @@ def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task(recwarn):
     worker than in-process). A local cluster's worker processes get cluster.WORKER_MALLOC, and
     Dask's housekeeping as cluster.LOCAL_QUIET sets it (no profiler sampling the tasks)."""
     import os
+    import socket
 
     import dask
 
     def seen():
         return ({k: os.environ.get(k) for k in cluster.WORKER_MALLOC},
                 {k: dask.config.get(k) for k in cluster.LOCAL_QUIET})
-    import socket
-
     busy = socket.socket()  # Dask's default HTTP port taken, as by a notebook's cluster: no warning
     try:
         busy.bind(("0.0.0.0", 8787))
