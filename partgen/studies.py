@@ -60,15 +60,21 @@ def modelled_kinds() -> list[str]:
     return [k for k, m in REGISTRY.items() if tolerance_hook(m) is not None]
 
 
-def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None):
-    """(model, nominal check result, seconds of the check): the kit built once, checked once."""
+def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None, progress: bool = False):
+    """(model, nominal check result, seconds of the check): the kit built once, checked once
+    (``progress``: a progress line over the check's crank angles, on a terminal)."""
     hook = tolerance_hook(loaded.mechanism)
     if hook is None:
         raise ConfigError(loaded.path, "kind", f"a {loaded.mechanism.kind} design offers no tolerance study yet "
                           f"(`partgen tolerance` runs on kind: {', '.join(modelled_kinds())})")
     kit = pipeline.make_kit(loaded)
     t0 = time.perf_counter()
-    result = loaded.mechanism.check(loaded.spec, kit, check_samples, None)
+    bar = C.Counter("nominal check, crank angles", 1, progress)
+
+    def angles(done: int, total: int) -> None:
+        bar.total = total
+        bar(done - bar.done)
+    result = loaded.mechanism.check(loaded.spec, kit, check_samples, angles if bar.enabled else None)
     seconds = time.perf_counter() - t0
     acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
     return hook(loaded.spec, kit, result, acc), result, seconds
@@ -177,7 +183,7 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                                       "tolerance", "tolerance", "-o")
     # an unreachable scheduler: exit 2, nothing written; a local cluster starts beside the build and check
     with C.starting(workers, scheduler, processes) as get_client:
-        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples)
+        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples, progress)
         t1 = time.perf_counter()
         client = get_client()
         t_cluster = time.perf_counter() - t1  # the wait for the cluster after the nominal check
