@@ -37,6 +37,7 @@ def main(argv=None) -> int:
 
     from partgen.export.verify import mesh_report, read_stl
     from partgen.geometry import bennett_link as BL
+    from partgen.geometry.capsules import segment_distance
     from partgen.geometry.solid import float32_sound, mesh_arrays
 
     rng = np.random.default_rng(args.seed)
@@ -70,9 +71,7 @@ def main(argv=None) -> int:
             bad += 1
             print(f"trial {trial}: {', '.join(rep.problems())}", file=sys.stderr)
         ends, radii, _ = BL.capsules([boss], bars)
-        a, ab = ends[:, 0], ends[:, 1] - ends[:, 0]
-        t = np.clip(np.einsum("vkj,kj->vk", v[:, None] - a[None], ab) / np.maximum(np.einsum("kj,kj->k", ab, ab), 1e-300), 0, 1)
-        gap = np.linalg.norm(v[:, None] - (a[None] + t[..., None] * ab[None]), axis=2) - radii[None]
+        gap = segment_distance(ends[None, :, 0], ends[None, :, 1], v[:, None], v[:, None]) - radii[None]  # (V, K)
         outside += gap.min(axis=1).max() > 1e-6
     print(f"{args.trials} bent bars (seed {args.seed}, {'first phase only' if args.one_phase else 'phases as built'}): "
           f"bad meshes {bad}, built at a later phase {rephased}, outside their capsules {outside} "

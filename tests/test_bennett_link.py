@@ -175,6 +175,7 @@ def test_random_bent_bars_write_one_shell_inside_their_capsules():
     from scipy.spatial.transform import Rotation
 
     from partgen.geometry import bennett_link as BL
+    from partgen.geometry.capsules import segment_distance
     from partgen.geometry.solid import float32_sound, mesh_arrays
 
     rng = np.random.default_rng(11)
@@ -194,10 +195,7 @@ def test_random_bent_bars_write_one_shell_inside_their_capsules():
         rep = _written(solid, R)
         assert (rep.shells, rep.non_manifold_edges, rep.pinched_vertices, rep.boundary_edges) == (1, 0, 0, 0), trial
         ends, radii, _ = BL.capsules([boss], bars)
-        a, ab = ends[:, 0], ends[:, 1] - ends[:, 0]
-        t = np.clip(np.einsum("vkj,kj->vk", v[:, None] - a[None], ab) / np.maximum(np.einsum("kj,kj->k", ab, ab), 1e-300),
-                    0, 1)
-        gap = np.linalg.norm(v[:, None] - (a[None] + t[..., None] * ab[None]), axis=2) - radii[None]
+        gap = segment_distance(ends[None, :, 0], ends[None, :, 1], v[:, None], v[:, None]) - radii[None]  # (V, K)
         assert gap.min(axis=1).max() < 1e-6, trial
 
 
