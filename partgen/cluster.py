@@ -64,15 +64,30 @@ def _reachable(address: str) -> str | None:
         return e.strerror or type(e).__name__
 
 
+def _within(fn: Callable, seconds: float, name: str) -> dict:
+    """Run ``fn()`` in a daemon thread and wait at most ``seconds``: {"value": what it returned} or
+    {"error": what it raised}, or {} when it had not finished (it is left to finish alone)."""
+    import threading
+
+    got: dict = {}
+
+    def run_it():
+        try:
+            got["value"] = fn()
+        except BaseException as e:  # noqa: BLE001 - handed to the caller
+            got["error"] = e
+    t = threading.Thread(target=run_it, name=name, daemon=True)
+    t.start()
+    t.join(seconds)
+    return got
+
+
 def _identify(address: str) -> str | None:
     """Why no Dask scheduler answers at ``address`` (None: one does), asked in Dask's own protocol
     (its handshake, then ``identity``) within CONNECT_TIMEOUT_S and before any Client exists: a port
     that answers in another protocol made the Client read a garbage frame length (a MemoryError
     for 3 EiB) and left a half-made Client whose clean-up hung for 8 s and printed a traceback."""
     import asyncio
-    import threading
-
-    got: dict = {}
 
     async def ask():
         from distributed.comm import connect
@@ -86,16 +101,10 @@ def _identify(address: str) -> str | None:
         finally:
             comm.abort()
 
-    def probe():
-        try:
-            got["reply"] = asyncio.run(asyncio.wait_for(ask(), CONNECT_TIMEOUT_S))
-        except BaseException as e:  # noqa: BLE001 - any failure says: no scheduler here
-            got["error"] = e
-    t = threading.Thread(target=probe, name="partgen-identify", daemon=True)
-    t.start()
-    t.join(CONNECT_TIMEOUT_S + 0.5)
-    if "reply" in got:
-        reply = got["reply"]
+    got = _within(lambda: asyncio.run(asyncio.wait_for(ask(), CONNECT_TIMEOUT_S)), CONNECT_TIMEOUT_S + 0.5,
+                  "partgen-identify")
+    if "value" in got:
+        reply = got["value"]
         kind = reply.get("type") if isinstance(reply, dict) else None
         if kind == "Scheduler":
             return None
@@ -108,23 +117,13 @@ def _identify(address: str) -> str | None:
 
 
 def _connect(Client, address: str):
-    """A Client of the scheduler at ``address``, or ``OptionError`` when none answers within
-    CONNECT_TIMEOUT_S: the connection is made in a thread and waited for, because a port that
-    accepts the connection but is no Dask scheduler never answers its handshake."""
-    import threading
-
-    got: dict = {}
-
-    def connect():
-        try:
-            got["client"] = Client(address, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False)
-        except BaseException as e:  # noqa: BLE001 - handed to the caller
-            got["error"] = e
-    t = threading.Thread(target=connect, name="partgen-connect", daemon=True)
-    t.start()
-    t.join(CONNECT_TIMEOUT_S + 0.5)
-    if "client" in got:
-        return got["client"]
+    """A Client of the scheduler at ``address`` (one ``_identify`` heard), or ``OptionError`` when
+    it cannot be made within CONNECT_TIMEOUT_S: the Client is made in a thread and waited for, so
+    a scheduler that stops answering in between is an error, not a hang."""
+    got = _within(lambda: Client(address, timeout=f"{CONNECT_TIMEOUT_S}s", set_as_default=False),
+                  CONNECT_TIMEOUT_S + 0.5, "partgen-connect")
+    if "value" in got:
+        return got["value"]
     e = got.get("error")
     why = "no answer" if e is None else f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}"
     raise OptionError("--scheduler", address, f"no Dask scheduler answered there within {CONNECT_TIMEOUT_S:g} s ({why})")
