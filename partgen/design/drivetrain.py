@@ -16,6 +16,7 @@ from fractions import Fraction
 from typing import Sequence
 
 from ..core.findings import Finding
+from ..core.quantise import quantise
 from ..errors import DesignError
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from .rules import Breach, GearRules, ToothSystemError, check_generable, gear_breaches, mesh_breaches
@@ -186,7 +187,7 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
     best, best_key, turned = None, None, Counter()
     for td, tg in ratio_multiples(ratio, zmin):
         D, G = make_gear(td, system), make_gear(tg, system)
-        if D.tip_radius + G.tip_radius + limits.tip_gap > length:
+        if quantise(D.tip_radius + G.tip_radius + limits.tip_gap) > quantise(length):
             break  # Eq 12 fails from here on: every larger n only grows the gears
         if best_key is not None and max(td, tg) > best_key[0]:
             break  # every larger n only makes a larger largest gear
@@ -203,7 +204,7 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
             if first is not None and tm > first + IDLER_TRIES:
                 break
             M = make_gear(tm, system)
-            if centre_distance(D, M) + centre_distance(M, G) < length + limits.idler_reach:
+            if quantise(centre_distance(D, M) + centre_distance(M, G)) < quantise(length + limits.idler_reach):
                 continue
             first = tm if first is None else first
             key = (max(td, tm, tg), td + tm + tg)

@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
+from ..core.quantise import quantise
 from ..errors import DesignError
 from . import involute
 from .gearing import GearSpec
@@ -145,7 +146,7 @@ def mesh_breaches(g1: GearSpec, g2: GearSpec, a: float, rules: GearRules, names:
     need = rules.tip_root_coeff * s.module
     for (tn, tg), (rn, rg) in (((n1, g1), (n2, g2)), ((n2, g2), (n1, g1))):
         c = tip_root_clearance(tg, rg, a)
-        if c < need:
+        if quantise(c) < quantise(need):  # at 1e-6 mm: a clearance designed equal to the rule meets it on any machine
             out.append(Breach("tip-root", f"tip of {tn} clears the root of {rn} by only {c:.3f} mm "
                               f"(< {need:.3f} mm, {rules.tip_root_coeff:g} module)", c, need))
     try:
@@ -157,7 +158,7 @@ def mesh_breaches(g1: GearSpec, g2: GearSpec, a: float, rules: GearRules, names:
         out.append(Breach("backlash", f"no backlash ({j:.3f} mm) at centre distance {a:.3f} mm", j, 0.0))
         return out
     eps = contact_ratio(g1, g2, a)
-    if eps < rules.min_contact_ratio:
+    if quantise(eps) < quantise(rules.min_contact_ratio):
         out.append(Breach("contact-ratio", f"contact ratio {eps:.3f} < {rules.min_contact_ratio:g}", eps,
                           rules.min_contact_ratio))
     for (gn, g), mate in (((n1, g1), g2), ((n2, g2), g1)):

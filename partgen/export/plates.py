@@ -40,6 +40,7 @@ import shapely
 import trimesh
 from shapely.geometry import Polygon, box
 
+from ..core.quantise import RESOLUTION_MM
 from ..core.transforms import rot2
 from .threemf import Object3MF, write_3mf
 
@@ -84,8 +85,12 @@ def _hull(mesh: trimesh.Trimesh):
     v = np.asarray(mesh.vertices, dtype=float)
     if len(v) < 3:
         raise ValueError("a mesh with fewer than 3 vertices has no footprint")
+    # quantised to RESOLUTION_MM first: a part's top and bottom vertices project onto one point, and
+    # without it the last bits decide whether the hull keeps a 1e-14 mm edge there, whose round join
+    # changes the footprint's area by 1e-3 mm² and can reorder the packing on another machine
+    xy = np.round(v[:, :2] / RESOLUTION_MM) * RESOLUTION_MM
     # one coordinate sequence (a LineString) is far cheaper to build than a MultiPoint
-    return shapely.linestrings(v[:, :2]).convex_hull
+    return shapely.linestrings(xy).convex_hull
 
 
 def footprint(mesh: trimesh.Trimesh, margin: float) -> Polygon:

@@ -21,6 +21,7 @@ import numpy as np
 
 from ...core.protocol import ParamsKit
 from ...core.transforms import frame_z
+from ...core.quantise import quantise
 from ...design import bennett_butterfly as bbf
 from .params import BennettParams
 from ...geometry.bennett_link import LINK_PHASES, Cup, base_solid, link_solid, pin_solid
@@ -222,7 +223,7 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     coarse = coarse_samples(angles)
     sized = min(v for v, _ in Sweep(p, coarse, bodies, rough).all(lay).values())
     figures = {"layout_source": "auto", "search_clearance_mm": {"guessed_pockets": guessed, "sized_pockets": sized}}
-    if sized >= min(guessed, p.bar_radius):  # the pockets as sized cost no clearance that matters
+    if quantise(sized) >= quantise(min(guessed, p.bar_radius)):  # the pockets as sized cost no clearance that matters
         return _build(p, lay, say, figures, cache)
     # the sized pockets came closer to something: move the pocket links and their stacks again, with
     # the pockets where they are; sizing the new layout moves them again, so keep whichever is better
@@ -230,7 +231,7 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     rough2 = _build(p, lay2, say, {}, cache, rounds=1).figures["next_pockets"]
     sized2 = min(v for v, _ in Sweep(p, coarse, bodies, rough2).all(lay2).values())
     figures["search_clearance_mm"]["refined_sized_pockets"] = sized2
-    return _build(p, lay2 if sized2 > sized else lay, say, figures, cache)
+    return _build(p, lay2 if quantise(sized2) > quantise(sized) else lay, say, figures, cache)  # a tie keeps lay
 
 
 def _cup_solid(cup: Cup) -> tuple[float, np.ndarray]:

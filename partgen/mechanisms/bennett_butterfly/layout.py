@@ -23,6 +23,7 @@ import numpy as np
 from ...design import bennett_butterfly as bbf
 from .params import BennettParams
 from ...geometry.bennett_link import capsules
+from ...core.quantise import RESOLUTION_MM, quantise, quantised
 from ...geometry.capsules import segment_distance
 from .parts import (BASE, Layout, base_features, default_layout, guess_fill, home_inputs, link_features,
                             stack)
@@ -381,12 +382,17 @@ def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=
                    for j in bbf.JOINTS)
         return need <= max(p.pin_stock) + 1e-9
 
-    def score(res: dict, l: Layout) -> tuple[float, float, float]:
+    def score(res: dict, l: Layout) -> tuple[int, int, int]:
         """(room missing: clearance short of a bar's radius between parts, and within each link
-        between its bores and the rest (``own_clearance``); the least clearance; compactness)"""
-        c = [v for v, _ in res.values()]
-        own = sum(min(x.own, 0.0) for x in sweep.capsules(l).values())
-        return sum(min(v - margin, 0.0) for v in c) + own, min(c), -sum(l.layer.values()) - sum(map(abs, l.shift.values()))
+        between its bores and the rest (``own_clearance``); the least clearance; compactness), each
+        quantised to ``RESOLUTION_MM`` (core.quantise): candidates within a nanometre are ties, so
+        the choice is the same on every machine; a tie keeps the earlier candidate (the moves'
+        stated order: links by number, layers up, then stacks in ``bbf.JOINTS``' order, shifts from
+        −offset_max up)"""
+        c = [v for _, (v, _) in sorted(res.items())]
+        own = math.fsum(min(x.own, 0.0) for _, x in sorted(sweep.capsules(l).items()))
+        return quantised((math.fsum(min(v - margin, 0.0) for v in c) + own, min(c),
+                          -sum(l.layer.values()) - math.fsum(map(abs, l.shift.values()))))
 
     lay = start or default_layout()
     res = sweep.all(lay)
@@ -403,8 +409,8 @@ def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=
         improved = False
         movable = set(allowed)
         if passes:
-            least = min(v for v, _ in res.values())
-            short = {x for pair, (v, _) in res.items() if v < max(margin, least + 1e-9) for x in pair}
+            least = min(quantise(v) for v, _ in res.values())
+            short = {x for pair, (v, _) in res.items() if quantise(v) <= max(quantise(margin) - 1, least) for x in pair}
             short |= {k for k, c in sweep.capsules(lay).items() if c.own < 0}
             movable &= short
         joints = [j for j, (links, _, _) in bbf.JOINTS.items() if movable & set(links)]
@@ -429,12 +435,12 @@ def choose_offsets(p: BennettParams, angles: np.ndarray, bodies: dict, progress=
                     best, lay, res, improved = sc, trial, r, True
         passes += 1
         if progress:
-            progress(f"layout: pass {passes} (steps of {step:g} mm), least clearance {best[1]:.2f} mm")
+            progress(f"layout: pass {passes} (steps of {step:g} mm), least clearance {best[1] * RESOLUTION_MM:.2f} mm")
         if not improved or passes >= rounds:
             if step <= fine + 1e-9 or passes >= rounds:
                 break
             step /= 2
-    return lay, best[1]
+    return lay, min(v for v, _ in res.values())
 
 
 def search_layout(p: BennettParams, progress=None) -> tuple[Layout, dict, np.ndarray, float, float]:
