@@ -16,9 +16,9 @@ from .config.loader import LoadedDesign
 from .config.overrides import Overrides, parse_set
 from .core.findings import Result
 from .core.protocol import Kit, Mechanism, Trace
-from .errors import ConfigError, DesignError
+from .errors import ConfigError, DesignError, OptionError
 from .export.kit import atomic_dir, write_kit
-from .export.outputs import claim_output
+from .export.outputs import claim_output, is_partgen_kit, read_marker
 from .export.prints import plan_plates, plates_png, stale_finding, write_plate_files
 from .export.studies import saved_tolerance
 from .mechanisms import REGISTRY, load_design
@@ -112,17 +112,48 @@ def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
     return _KITS[key]
 
 
-def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None):
-    """Claim the output folder of a command before any work: ``dest`` or out/<name>[/<sub>]."""
-    if dest is None:
-        dest = Path("out") / raw.design.name / default_sub if default_sub else Path("out") / raw.design.name
+def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None,
+                 kit_dir: Path | None = None, over: Overrides | None = None):
+    """Claim the output folder of a command before any work: ``dest`` or out/<name>[/<sub>].
+
+    A derived output (plates, trace, report, tolerance) goes into a kit folder only when it is made
+    from that kit: into KITDIR/<sub> for a KITDIR without --set or --printer, into
+    out/<name>/<sub> for a CONFIG only when out/<name>/ holds no kit or the kit this very design (the
+    file as it is now, with these overrides, on this printer) built — its marker records the design's
+    digest. Anything else is refused (exit 2), saying where to write instead: a kit folder's
+    plates, trace and report always match its STLs."""
+    if kind == "kit":
+        return claim_output(dest if dest is not None else Path("out") / raw.design.name, kind, option,
+                            (raw.path, raw.printer_path), notify, source=raw.digest())
+    if dest is None and kit_dir is not None:
+        if over:
+            raise OptionError(option, str(kit_dir / default_sub),
+                              f"{kit_dir} is the kit of its design.yaml as it is; with --set or --printer the design "
+                              f"is another, whose {default_sub} would not match the kit's STLs: give {option} DIR, or "
+                              f"build the changed design into its own folder (partgen build {kit_dir} --set … -o DIR) "
+                              "and use that folder")
+        dest = kit_dir / default_sub
+    elif dest is None:
+        home = Path("out") / raw.design.name
+        dest = home / default_sub if default_sub else home
+        if default_sub and is_partgen_kit(home):
+            made = (read_marker(home) or {}).get("source")
+            if made != raw.digest():
+                why = ("this design with these --set/--printer changes" if over else "this design file as it is now (it was built from "
+                       "another version of it, or with other --set/--printer changes)" if made else
+                       "a design partgen cannot tell (it was built by an earlier partgen)")
+                raise OptionError(option, str(dest),
+                                  f"{home} holds a kit not built from {why}, and a kit folder's {default_sub} must "
+                                  f"match its STLs: give {option} DIR, or build this design into its own folder "
+                                  f"(partgen build {raw.path} {'--set … ' if over else ''}-o DIR) and use that folder, "
+                                  f"or rebuild {home} from it")
     return claim_output(dest, kind, option, (raw.path, raw.printer_path), notify)
 
 
 def build(path, dest=None, progress=None, notify=None, over: Overrides | None = None) -> Built:
     """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made."""
     raw, _ = _raw(path, over)
-    claim = output_claim(raw, dest, "kit", None, "-o", notify)
+    claim = output_claim(raw, dest, "kit", None, "-o", notify)  # its marker records raw.digest()
     loaded = load(path, raw)
     kit = make_kit(loaded, progress, fresh=True)
     mech, spec = loaded.mechanism, loaded.spec
@@ -144,8 +175,8 @@ def check(target, samples: int | None = None, progress=None, plates_dir=None, wr
     raw, kit_dir = _raw(target, over)
     claim = None
     if write_plates:
-        claim = output_claim(raw, Path(plates_dir) if plates_dir else (kit_dir / "plates" if kit_dir else None),
-                             "plates", "plates", "--plates", notify)
+        claim = output_claim(raw, Path(plates_dir) if plates_dir else None, "plates", "plates", "--plates", notify,
+                             kit_dir, over)
     loaded = load(target, raw)
     kit = make_kit(loaded)
     result = loaded.mechanism.check(loaded.spec, kit, samples, progress)
@@ -162,9 +193,8 @@ def trace(target, samples: int | None = None, plots_dir=None, animate: bool = Tr
     """The mechanism's motion over its range and its figures, written into ``plots_dir`` (default
     out/<name>/trace, or KITDIR/trace; False: none)."""
     loaded = load(target, over=over)
-    if plots_dir is None and loaded.kit_dir is not None:
-        plots_dir = loaded.kit_dir / "trace"
-    claim = None if plots_dir is False else output_claim(loaded.raw, plots_dir, "trace", "trace", "--plots")
+    claim = None if plots_dir is False else output_claim(loaded.raw, plots_dir, "trace", "trace", "--plots",
+                                                         kit_dir=loaded.kit_dir, over=over)
     kit = make_kit(loaded) if loaded.mechanism.trace_needs_kit else None
     if claim is None:
         return Traced(loaded, loaded.mechanism.trace(loaded.spec, kit, samples, None, animate), None)
@@ -187,8 +217,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
 
     say = progress or (lambda step: None)
     raw, kit_dir = _raw(target, over)
-    claim = output_claim(raw, dest if dest is not None else (kit_dir / "report" if kit_dir else None),
-                         "report", "report", "-o")
+    claim = output_claim(raw, dest, "report", "report", "-o", kit_dir=kit_dir, over=over)
     say("build")
     loaded = load(target, raw)
     kit = make_kit(loaded)

@@ -152,6 +152,11 @@ def sample(client, model: MarginModel, samples: int, seed: int, claim=None, resu
     t1 = time.perf_counter()
     try:
         C.run(client, run_chunk, model, todo, keep, None, "tolerance")
+    except BaseException as e:
+        if out is not None and not isinstance(e, Exception):  # ^C or SIGTERM: say what is kept, and how to go on
+            e.partgen_note = (f"the {len(got)} finished chunk(s) of {len(sizes)} are kept in {out}/chunks.jsonl: run "
+                              "the same command with --resume to go on from there")
+        raise
     finally:
         if sink is not None:
             sink.close()
@@ -179,8 +184,8 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
         nominal_model(loaded, accuracy_mm)  # raises the clear error
     claim = None
     if write:
-        claim = pipeline.output_claim(raw, Path(dest) if dest else (kit_dir / "tolerance" if kit_dir else None),
-                                      "tolerance", "tolerance", "-o")
+        claim = pipeline.output_claim(raw, Path(dest) if dest else None, "tolerance", "tolerance", "-o",
+                                      kit_dir=kit_dir, over=over)
     # an unreachable scheduler: exit 2, nothing written; a local cluster starts beside the build and check
     with C.starting(workers, scheduler, processes) as get_client:
         model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples, progress)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .common import note, print_json, add_design_options, overrides
+from .common import add_common_options, note, overrides, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -13,10 +13,8 @@ __all__ = ["add_parser", "run"]
 def add_parser(sub) -> None:
     p = sub.add_parser("build", help="build the STL kit, manifest and assembly of a design")
     p.add_argument("config", help="design YAML (configs/butterfly.yaml)")
-    p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/)")
-    p.add_argument("-q", "--quiet", action="store_true", help="no progress")
-    p.add_argument("--json", action="store_true", help="print one JSON object (ok, kit folder, parts) and nothing else")
-    add_design_options(p)
+    add_common_options(p, "output folder (default out/<design name>/)",
+                       json_help="print one JSON object (ok, kit folder, parts) and nothing else")
     p.set_defaults(run=run)
 
 
@@ -54,8 +52,14 @@ def run(args) -> int:
                     "seconds": round(time.perf_counter() - t0, 3)})
         return 0
     for f in findings:
-        word = "warning" if f.severity == "warn" else "note"
-        print(f"partgen: {word}: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
-    print(mech.bill_text(spec, man, dest, time.perf_counter() - t0))
+        if f.severity == "warn" or not args.quiet:
+            word = "warning" if f.severity == "warn" else "note"
+            print(f"partgen: {word}: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
+    seconds = time.perf_counter() - t0
+    if args.quiet:  # only what was written
+        print(f"wrote {dest}/ ({len(man['parts'])} distinct parts, "
+              f"{sum(p['count'] for p in man['parts'])} to print) in {seconds:.2f} s")
+        return 0
+    print(mech.bill_text(spec, man, dest, seconds))
     print(shopping_list(man))
     return 0

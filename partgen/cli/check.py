@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .common import bounded_int, note, print_json, add_design_options, overrides
+from .common import add_common_options, bounded_int, note, overrides, print_json, quiet_text
 
 __all__ = ["add_parser", "run"]
 
@@ -17,10 +17,9 @@ def add_parser(sub) -> None:
     p.add_argument("target", help="design YAML, or a kit folder written by `partgen build`")
     p.add_argument("--samples", type=bounded_int(4, 10_000), default=None,
                    help="crank angles over one cycle, 4 to 10,000 (default: the config's checks.samples)")
-    p.add_argument("--json", action="store_true", help="print one JSON object (ok, findings, figures) and nothing else")
-    p.add_argument("--plates", default=None, help="folder for the build plates (default: <kit>/plates)")
     p.add_argument("--no-plates", action="store_true", help="lay out the build plates but write nothing")
-    add_design_options(p)
+    add_common_options(p, "folder for the build plates (default: <kit>/plates; old name --plates)", "--plates",
+                       json_help="print one JSON object (ok, findings, figures) and nothing else")
     p.set_defaults(run=run)
 
 
@@ -46,7 +45,7 @@ def run(args) -> int:
     from .. import pipeline
 
     t0 = time.perf_counter()
-    loaded, kit, result, folder = pipeline.check(args.target, args.samples, Bar(not args.json), args.plates,
+    loaded, kit, result, folder = pipeline.check(args.target, args.samples, Bar(not (args.json or args.quiet)), args.out,
                                                  not args.no_plates, note, overrides(args))
     seconds = time.perf_counter() - t0
     if args.json:
@@ -55,5 +54,6 @@ def run(args) -> int:
                "plates_dir": str(folder) if folder else None, "seconds": round(seconds, 3)}
         print_json(out)
     else:
-        print(loaded.mechanism.check_text(loaded.spec, result, folder, seconds))
+        text = loaded.mechanism.check_text(loaded.spec, result, folder, seconds)
+        print(quiet_text(text) if args.quiet else text)
     return 0 if result.ok else 1

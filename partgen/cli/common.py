@@ -7,7 +7,8 @@ import json
 import math
 import sys
 
-__all__ = ["bounded_int", "note", "print_json", "json_safe", "add_design_options", "overrides"]
+__all__ = ["bounded_int", "note", "print_json", "json_safe", "add_design_options", "add_common_options", "overrides",
+           "quiet_text"]
 
 
 def bounded_int(lo: int, hi: int):
@@ -54,6 +55,26 @@ def add_design_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="sets",
                    help="change one design value as if written in the YAML (gears.module_mm=1.5); repeatable")
     p.set_defaults(usage=p.format_usage)
+
+
+def add_common_options(p: argparse.ArgumentParser, out_help: str, *out_aliases: str, json_help: str | None = None
+                       ) -> None:
+    """The options every command has, with one meaning: ``-o/--out DIR`` (where its output goes;
+    ``out_aliases`` keep a command's older name for it, e.g. ``--plates``), ``-q/--quiet`` (no
+    progress, only the result: what was written, the verdict and what failed), ``--json`` (one JSON
+    object on stdout and nothing else), and the design options ``--printer`` and ``--set``."""
+    p.add_argument("-o", "--out", *out_aliases, dest="out", default=None, metavar="DIR", help=out_help)
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress; print only the result")
+    p.add_argument("--json", action="store_true", help=json_help or "print one JSON object and nothing else")
+    add_design_options(p)
+
+
+def quiet_text(text: str) -> str:
+    """What ``-q`` keeps of a command's text: the lines that say something failed or warn, and the
+    last line (what was written, or the verdict)."""
+    lines = [ln for ln in text.rstrip("\n").split("\n") if ln.strip()]
+    keep = [ln for ln in lines[:-1] if ln.lstrip().startswith(("FAIL", "WARN", "warning", "error"))]
+    return "\n".join(keep + lines[-1:])
 
 
 def overrides(args):

@@ -28,6 +28,21 @@ from .common import print_json
 __all__ = ["main", "entry", "Interrupted"]
 
 
+def _spawned_worker() -> None:
+    """A ^C at the terminal reaches every process of its group, the local Dask cluster's worker
+    processes too, and each printed its own tracebacks. A worker is a process multiprocessing
+    spawned, and spawning imports the parent's main module there first — the ``partgen`` script,
+    which imports this module — so here, and only in such a process, SIGINT is ignored: the partgen
+    process the user started takes the ^C and stops its workers. (An ignored SIGINT is kept by the
+    worker's Python and asyncio, which then install no handler of their own.)"""
+    # multiprocessing runs the parent's main module in a spawned child as ``__mp_main__`` (and only there)
+    if "__mp_main__" in sys.modules and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+_spawned_worker()
+
+
 class Interrupted(BaseException):
     """SIGTERM (or SIGINT) arrived: unwinds like KeyboardInterrupt, so temporary outputs are removed."""
 
@@ -93,10 +108,10 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return _run(argv, want_json)
     except Interrupted as e:
-        print("partgen: interrupted; nothing half-written was left", file=sys.stderr)
+        print(f"partgen: interrupted; {_kept(e)}", file=sys.stderr)
         return 128 + e.signum
-    except KeyboardInterrupt:
-        print("partgen: interrupted; nothing half-written was left", file=sys.stderr)
+    except KeyboardInterrupt as e:
+        print(f"partgen: interrupted; {_kept(e)}", file=sys.stderr)
         return 130
     except BrokenPipeError:
         _quiet_stdout()
@@ -104,6 +119,12 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         for sig, handler in previous.items():
             signal.signal(sig, handler)
+
+
+def _kept(e: BaseException) -> str:
+    """What an interruption left: by default nothing (outputs are swapped in whole); a study written
+    as it goes (tolerance's chunks.jsonl) says what it kept and how to resume."""
+    return getattr(e, "partgen_note", None) or "nothing half-written was left"
 
 
 def _import_guarded() -> None:

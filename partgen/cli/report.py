@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from .common import bounded_int, print_json, add_design_options, overrides
+from .common import add_common_options, bounded_int, overrides, print_json
 
 __all__ = ["add_parser", "run"]
 
@@ -13,10 +13,9 @@ __all__ = ["add_parser", "run"]
 def add_parser(sub) -> None:
     p = sub.add_parser("report", help="write DIR/index.html: design, parts, stacking, trace, check, plates")
     p.add_argument("config", help="design YAML, or a kit folder written by `partgen build`")
-    p.add_argument("-o", "--out", default=None, help="output folder (default out/<design name>/report)")
     p.add_argument("--samples", type=bounded_int(4, 10_000), default=None, help="samples of the motion for the check")
-    p.add_argument("--json", action="store_true", help="print one JSON object (ok, report path) and nothing else")
-    add_design_options(p)
+    add_common_options(p, "output folder (default out/<design name>/report, or KITDIR/report)",
+                       json_help="print one JSON object (ok, report path) and nothing else")
     p.set_defaults(run=run)
 
 
@@ -24,7 +23,7 @@ def run(args) -> int:
     from .. import pipeline
 
     t0 = time.perf_counter()
-    tty = sys.stderr.isatty() and not args.json
+    tty = sys.stderr.isatty() and not (args.json or args.quiet)
 
     def say(step):
         if tty:

@@ -5,7 +5,7 @@ Exit 0 when the sweep ran (whatever its points found), 2 for bad input (nothing 
 
 from __future__ import annotations
 
-from .common import add_design_options, bounded_int, overrides, print_json
+from .common import add_common_options, bounded_int, overrides, print_json
 from .tolerance import _accuracy, add_workers_options
 
 __all__ = ["add_parser", "run"]
@@ -24,10 +24,8 @@ def add_parser(sub) -> None:
     p.add_argument("--seed", type=bounded_int(0, 2 ** 63 - 1), default=0, help="random seed (default 0)")
     p.add_argument("--check-samples", type=bounded_int(4, 10_000), default=None,
                    help="crank angles of each point's check (default: the config's checks.samples)")
-    p.add_argument("-o", "--out", default=None, help="output folder (default out/<name>/sweep)")
-    p.add_argument("--json", action="store_true", help="print one JSON object and nothing else")
+    add_common_options(p, "output folder (default out/<name>/sweep)")
     add_workers_options(p)
-    add_design_options(p)
     p.set_defaults(run=run)
 
 
@@ -36,7 +34,7 @@ def run(args) -> int:
 
     r = studies.sweep(args.config, args.vary, args.out, args.random, args.tolerance_samples, args.accuracy_mm,
                       args.seed, args.workers, args.scheduler, args.check_samples, overrides(args),
-                      progress=not args.json)
+                      progress=not (args.json or args.quiet))
     if args.json:
         print_json({"ok": True, **r})
         return 0
@@ -53,5 +51,5 @@ def run(args) -> int:
     if len(r["rows"]) > 40:
         lines.append(f"  … {len(r['rows']) - 40} more in points.csv")
     lines.append(f"wrote {r['dest']}/points.csv, index.html")
-    print("\n".join(lines))
+    print("\n".join([lines[0], lines[-1]] if args.quiet else lines))
     return 0

@@ -8,7 +8,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from .common import add_design_options, bounded_int, overrides, print_json
+from .common import add_common_options, bounded_int, overrides, print_json
 
 __all__ = ["add_parser", "run", "text"]
 
@@ -55,11 +55,8 @@ def add_parser(sub) -> None:
                    help="samples per task (default 5000, or a 16th of a study over 80,000 samples, at most 100,000; "
                         "with the seed it fixes the result: raise it for many workers)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted run with the same settings")
-    p.add_argument("-o", "--out", default=None, help="folder for chunks.jsonl and result.json "
-                   "(default <kit>/tolerance or out/<name>/tolerance)")
-    p.add_argument("--json", action="store_true", help="print one JSON object and nothing else")
+    add_common_options(p, "folder for chunks.jsonl and result.json (default <kit>/tolerance or out/<name>/tolerance)")
     add_workers_options(p)
-    add_design_options(p)
     p.set_defaults(run=run)
 
 
@@ -102,7 +99,7 @@ def run(args) -> int:
     from .. import studies
 
     res = studies.tolerance(args.target, args.samples, args.accuracy_mm, args.seed, args.workers, args.scheduler,
-                            args.out, args.resume, args.check_samples, overrides(args), progress=not args.json,
+                            args.out, args.resume, args.check_samples, overrides(args), progress=not (args.json or args.quiet),
                             **({"chunk": args.chunk} if args.chunk else {}))
     r = res.result
     limit = args.max_jam_probability
@@ -110,7 +107,7 @@ def run(args) -> int:
     if args.json:
         print_json({"ok": not failed, "max_jam_probability": limit, **r, "dest": str(res.dest) if res.dest else None})
     else:
-        print(text(r, res.dest))
+        print(text(r, res.dest) if not args.quiet else text(r, res.dest).split("\n")[1])
         if failed:
             print(f"FAILED: P(jam) {_pct(r['overall']['probability'])} is above --max-jam-probability {limit:g}")
     return 1 if failed else 0

@@ -3,7 +3,7 @@ mechanism's own figure and table)."""
 
 from __future__ import annotations
 
-from .common import bounded_int, print_json, add_design_options, overrides
+from .common import add_common_options, bounded_int, overrides, print_json, quiet_text
 
 __all__ = ["add_parser", "run"]
 
@@ -12,11 +12,10 @@ def add_parser(sub) -> None:
     p = sub.add_parser("trace", help="trace the motion of the kit as built (the pen path, the ratio, the centre of mass)")
     p.add_argument("config", help="design YAML, or a kit folder written by `partgen build`")
     p.add_argument("--csv", default=None, help="write the path: theta_rad, x_mm, y_mm")
-    p.add_argument("--json", action="store_true", help="print one JSON object and nothing else")
     p.add_argument("--samples", type=bounded_int(16, 36_000), default=None, help="samples of the motion, 16 to 36,000 (default: the mechanism's)")
-    p.add_argument("--plots", default=None, help="folder for the plots (default out/<name>/trace)")
-    p.add_argument("--no-plots", action="store_true")
-    add_design_options(p)
+    p.add_argument("--no-plots", action="store_true", help="trace, but write no plots")
+    add_common_options(p, "folder for the plots (default out/<name>/trace, or KITDIR/trace; old name --plots)",
+                       "--plots")
     p.set_defaults(run=run)
 
 
@@ -28,14 +27,15 @@ def run(args) -> int:
     mech = loaded.mechanism
     if args.csv:
         check_text_target(args.csv, "--csv", mech.csv_header, (loaded.path,))
-    _, tr, folder = pipeline.trace(loaded, args.samples, False if args.no_plots else args.plots)
+    _, tr, folder = pipeline.trace(loaded, args.samples, False if args.no_plots else args.out)
     if args.csv:
         write_text_file(args.csv, mech.csv(tr), "--csv", (loaded.path,))
     if args.json:
         print_json({"ok": True, "kind": mech.kind, "design": loaded.name, **tr.stats,
                     "plots_dir": str(folder) if folder else None})
         return 0
-    print(mech.trace_text(loaded.spec, tr, folder))
+    text = mech.trace_text(loaded.spec, tr, folder)
+    print(quiet_text(text) if args.quiet else text)
     if args.csv:
         print(f"path: {args.csv}")
     return 0

@@ -19,7 +19,7 @@ from ..geometry.solid import mesh_arrays, print_arrays
 from .outputs import OutputClaim, atomic_dir
 from .verify import mesh_report, read_stl
 
-__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "verify_parts", "write_kit", "atomic_dir"]
+__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "built_with", "verify_parts", "write_kit", "atomic_dir"]
 
 
 @dataclass(frozen=True)
@@ -104,7 +104,27 @@ def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
         if first.part.gear is not None:
             entry["gear"] = _gear_entry(first.part)
         parts.append(entry)
-    return {"design": design, "parts": parts}
+    return {"design": design, "parts": parts, "built_with": built_with()}
+
+
+BUILT_WITH = ("numpy", "manifold3d", "shapely", "trimesh", "scipy")  # whose arithmetic reaches the parts
+
+
+def built_with() -> dict[str, str]:
+    """The versions that build a kit (the manifest's ``built_with``): partgen, Python and
+    ``BUILT_WITH``. A kit's choices and dimensions do not depend on them; its STL bytes may."""
+    import platform
+    from importlib.metadata import PackageNotFoundError, version
+
+    from .. import __version__
+
+    out = {"partgen": __version__, "python": platform.python_version()}
+    for name in BUILT_WITH:
+        try:
+            out[name] = version(name)
+        except PackageNotFoundError:  # pragma: no cover - every one is a dependency
+            out[name] = "unknown"
+    return out
 
 
 def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] = (), theta: float = 0.0) -> bytes:

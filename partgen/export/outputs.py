@@ -32,7 +32,7 @@ from pathlib import Path
 from .. import __version__
 from ..errors import OptionError
 
-__all__ = ["MARKER", "KIT_DERIVED", "OutputClaim", "claim_output", "atomic_dir", "open_incremental", "check_text_target",
+__all__ = ["MARKER", "KIT_DERIVED", "OutputClaim", "claim_output", "read_marker", "atomic_dir", "open_incremental", "check_text_target",
            "write_text_file", "is_partgen_kit"]
 
 MARKER = ".partgen"
@@ -89,7 +89,9 @@ def _foreign(folder: Path, kind: str) -> list[str]:
         if p.is_symlink():
             out.append(entry)
         elif p.is_dir():
-            if not (kind == "kit" and entry in KIT_DERIVED and _derived_ok(p, entry)):
+            if kind == "kit" and entry in KIT_DERIVED and _kind_of(p) in (entry, None):
+                out += [f"{entry}/{x}" for x in _foreign(p, entry)]  # name the user's files inside it
+            elif not (kind == "kit" and entry in KIT_DERIVED and _derived_ok(p, entry)):
                 out.append(entry + "/")
         elif not (entry in listed if listed is not None else _LEGACY[kind].match(entry)):
             out.append(entry)
@@ -122,6 +124,7 @@ class OutputClaim:
     notify: object = None  # called with each note as it happens (the CLI prints them)
     notes: list[str] = field(default_factory=list)
     changed: bool = True
+    source: str | None = None  # a kit's: the digest of the design it was built from (recorded in its marker)
 
     def __post_init__(self):
         self.dest = Path(self.dest)
@@ -208,7 +211,7 @@ class OutputClaim:
         try:
             files = sorted(os.listdir(self.tmp))
             _write_json(self.tmp / MARKER, {"generator": "partgen", "version": __version__, "output": self.kind,
-                                            "files": files})
+                                            "files": files, **({"source": self.source} if self.source else {})})
             with _locked(self.dest.parent):
                 self.check()  # again, under the lock: another process may have written meanwhile
                 self._swap()
@@ -246,11 +249,13 @@ class OutputClaim:
             self.notify(text)
 
 
-def claim_output(dest: str | Path, kind: str, option: str = "-o", protect=(), notify=None) -> OutputClaim:
+def claim_output(dest: str | Path, kind: str, option: str = "-o", protect=(), notify=None,
+                 source: str | None = None) -> OutputClaim:
     """Check ``dest`` for a ``kind`` output ("kit", "plates", "trace", "report") before any work;
     ``with`` the result to write it. ``protect``: files partgen reads (the design, the printer);
-    ``notify(line)`` hears what the swap did besides writing (stale folders removed)."""
-    return OutputClaim(Path(dest), kind, option, tuple(Path(p) for p in protect), notify)
+    ``notify(line)`` hears what the swap did besides writing (stale folders removed); ``source``: what
+    the output was made from (a kit's design digest), kept in its marker."""
+    return OutputClaim(Path(dest), kind, option, tuple(Path(p) for p in protect), notify, source=source)
 
 
 def open_incremental(claim: OutputClaim, files: list[str], keep: bool = False) -> Path:
