@@ -71,8 +71,12 @@ def _same(a, b, rel: float = 1e-6) -> bool:
     return a == b
 
 
+MESH_ONLY = {"triangles"}  # how the kernel tessellated a part: a property of the STL, not of the design
+
+
 def differences(ma: dict, mb: dict) -> list[str]:
-    """What differs between two manifests in choices and dimensions (``built_with`` left out)."""
+    """What differs between two manifests in choices and dimensions (``built_with`` and the
+    triangle counts left out: see ``MESH_ONLY``)."""
     out = []
     if not _same(ma["design"], mb["design"]):
         keys = sorted(k for k in ma["design"].keys() | mb["design"].keys()
@@ -82,7 +86,7 @@ def differences(ma: dict, mb: dict) -> list[str]:
     if pa.keys() != pb.keys():
         out.append(f"parts: {sorted(pa.keys() ^ pb.keys())}")
     for n in sorted(pa.keys() & pb.keys()):
-        bad = [k for k in pa[n] if not _same(pa[n][k], pb[n].get(k))]
+        bad = [k for k in pa[n] if k not in MESH_ONLY and not _same(pa[n][k], pb[n].get(k))]
         if bad:
             out.append(f"{n}: {', '.join(bad)}")
     if not _same(ma.get("purchased", []), mb.get("purchased", [])):
@@ -111,8 +115,8 @@ def main(argv: list[str] | None = None) -> int:
         print("versions (pinned → other): " + ", ".join(
             f"{n} {va[n]}" + ("" if va[n] == vb[n] else f" → {vb[n]}") for n in DEPS))
         print()
-        print(f"| {'design':28} | choices and dimensions | STL bytes identical | pinned s | other s |")
-        print(f"|{'-' * 30}|------------------------|---------------------|----------|---------|")
+        print(f"| {'design':28} | choices and dimensions | STL bytes identical | same triangles  | pinned s | other s |")
+        print(f"|{'-' * 30}|------------------------|---------------------|-----------------|----------|---------|")
         bad = 0
         for cfg in configs:
             say(f"building {cfg.name} …")
@@ -121,14 +125,16 @@ def main(argv: list[str] | None = None) -> int:
             if ma is None or mb is None:
                 same = "both refused" if ma is None and mb is None else f"refused: {ea or eb}"
                 bad += (ma is None) != (mb is None)
-                print(f"| {cfg.stem:28} | {same:22} | {'':19} | {sa:8.1f} | {sb:7.1f} |")
+                print(f"| {cfg.stem:28} | {same:22} | {'':19} | {'':15} | {sa:8.1f} | {sb:7.1f} |")
                 continue
             diff = differences(ma, mb)
             bad += bool(diff)
             ha, hb = stl_hashes(tmp / "a" / cfg.stem), stl_hashes(tmp / "b" / cfg.stem)
             ident = sum(ha[k] == hb.get(k) for k in ha)
+            tri = {p["name"]: p["triangles"] for p in ma["parts"]}
+            same_tri = sum(tri[p["name"]] == p["triangles"] for p in mb["parts"] if p["name"] in tri)
             print(f"| {cfg.stem:28} | {'same' if not diff else 'DIFFER':22} | {f'{ident}/{len(ha)}':19} | "
-                  f"{sa:8.1f} | {sb:7.1f} |")
+                  f"{f'{same_tri}/{len(tri)}':15} | {sa:8.1f} | {sb:7.1f} |")
             for d in diff:
                 print(f"|   {d}")
     print()

@@ -139,3 +139,24 @@ def test_bennett_layout_search_survives_ulp_perturbation():
     kit = build_bennett(spec)
     lay = kit.layout
     assert ({i: v for i, v in lay.layer.items() if i}, {j: v for j, v in lay.shift.items() if v}) == want
+
+
+@pytest.mark.parametrize("overall, targets", [
+    (10.0, [{}, {}]),  # the reducer: the overall ratio split over two stages
+    (7.3, [{}, {}, {}]),  # an inexact ratio: many trains within the same error
+    (None, [{"ratio": 3.7}, {"ratio": 2.2, "centre_distance": 48.4}]),  # a centre distance met by shift
+])
+def test_gear_train_teeth_survive_ulp_perturbation(overall, targets):
+    """solve_train's choice (the split of the overall ratio, the pair nearest each ratio, the pair a
+    centre distance's shifts reach) is the same with every ratio and distance a few ulps off."""
+    from partgen.design.gear_train import StageTarget, TeethLimits, solve_train
+
+    lim = TeethLimits(min_teeth=13, max_teeth=60, module=2.0)
+
+    def solve(n: int):
+        ts = [StageTarget(**{k: ulps(v, n) if isinstance(v, float) else v for k, v in t.items()}) for t in targets]
+        got = solve_train(ts, lim, 2.0, math.radians(20), None if overall is None else ulps(overall, n))
+        return [(s.driver, s.driven, None if s.shifts is None else tuple(round(x, 9) for x in s.shifts)) for s in got]
+
+    base = solve(0)
+    assert all(solve(n) == base for n in (-3, -1, 2, 4))

@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
+from ..core.quantise import quantise
 from ..errors import DesignError
 from . import involute
 
@@ -87,7 +88,7 @@ def _pairs_for_ratio(ratio: float, lim: TeethLimits):
         base = ratio * z1
         for z2 in {math.floor(base), math.ceil(base)}:
             if lim.allowed(z2):
-                out.append((abs(z2 / z1 - ratio) / ratio, z1 + z2, z1, z2))
+                out.append((quantise(abs(z2 / z1 - ratio) / ratio, 1e-12), z1 + z2, z1, z2))  # error to 1e-12
     return sorted(out)
 
 
@@ -135,7 +136,7 @@ def _best_product(ratios: list[float], total: float, lim: TeethLimits, exact: bo
                 return
             p = pairs[0]
             got = float(acc) * p[3] / p[2]
-            score = (abs(got - total) / total, sum(a + b for a, b in chosen) + p[1])
+            score = (quantise(abs(got - total) / total, 1e-12), sum(a + b for a, b in chosen) + p[1])  # ties: fewer teeth, then the first found
             if best is None or score < best[0]:
                 best = (score, chosen + [(p[2], p[3])])
             return
@@ -211,7 +212,7 @@ def _cd_pair(target: StageTarget, m: float, alpha: float, lim: TeethLimits, x_ra
         lo, hi = centre_distance_range(z1, z2, m, alpha, *x_range)
         if lo - 1e-9 <= a <= hi + 1e-9:
             a0 = m * (z1 + z2) / 2  # a pair spread apart (x1 + x2 ≥ 0) before one pulled in: a negative sum
-            cands.append((round(err, 12), a0 > a + 1e-9, abs(a0 - a), z1, z2))  # thins the teeth and lowers α_w
+            cands.append((err, a0 > a + 1e-9, quantise(abs(a0 - a)), z1, z2))  # thins the teeth and lowers α_w
     if not cands:
         zs = 2 * a / m
         raise DesignError(f"no whole teeth near the ratio {target.ratio:g} reach the centre distance {a:g} mm with "
