@@ -189,7 +189,7 @@ def test_build_and_trace_measure_the_pen_against_the_samples(tmp_path, capsys):
     write_csv(tmp_path / "c.csv", z)
     cfg = design(tmp_path, {"points": "c.csv", "max_deviation_mm": 6.0})
     kit = tmp_path / "kit"
-    assert main(["build", str(cfg), "-o", str(kit), "-q"]) == 0
+    assert main(["build", str(cfg), "-o", str(kit)]) == 0
     out = capsys.readouterr().out
     assert "links vs deviation" in out and "<- chosen" in out
     assert (kit / "curve.csv").read_bytes() == (tmp_path / "c.csv").read_bytes()
