@@ -131,7 +131,7 @@ def profile_text(base: ProfileRef, cal: Calibrated, results: Path, data: dict, t
     old = base.data
     fits_old = dict(old.get("fits") or {})
     b_old = dict(old.get("biases") or {})
-    new = {k: v for k, v in old.items() if k not in ("fits", "biases", "calibration", "name")}
+    new = {k: v for k, v in old.items() if k not in ("fits", "biases", "calibration", "name", "measured")}
     src = f"coupon {results.name}" + (f", printed {data['printed_on']}" if data.get("printed_on") else "")
     name = f"{base.printer.name} (calibrated {today})"
     fits = dict(fits_old)
@@ -164,6 +164,7 @@ def profile_text(base: ProfileRef, cal: Calibrated, results: Path, data: dict, t
         lines.append(f"{k}: {_yaml_value(v)}" + (f"    # {why[k]}" if k in why else ""))
     lines.append("fits:")
     lines += [f"  {k}: {_yaml_value(v)}" + (f"    # {why[k]}" if k in why else "") for k, v in fits.items()]
+    lines.append("measured: true    # by the coupon: fits, xy accuracy and biases below")
     lines.append("biases:")
     lines += [f"  {k}: {_yaml_value(v)}    # {why[k]}" for k, v in biases.items()]
     lines += ["calibration:", f"  coupon: {TEMPLATE_VERSION}", f"  results: {_yaml_value(results.name)}",

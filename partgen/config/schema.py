@@ -107,12 +107,9 @@ class Printer(Strict):
         45.0, description="steepest overhang printed without supports, from the vertical")
     fits: Fits | None = None
     biases: Biases | None = None
+    measured: bool = Field(False, description="fits, accuracy and biases were measured on this machine (false: "
+                           "typical values for its kind)")
     calibration: Calibration | None = None
-
-    @property
-    def measured(self) -> bool:
-        """The fits and accuracy were measured on this machine (a coupon), not typical values."""
-        return self.calibration is not None
 
     @model_validator(mode="after")
     def _one_each(self):
