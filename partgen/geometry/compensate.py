@@ -31,6 +31,8 @@ from .solid import prisms
 __all__ = ["ROUND", "is_round", "offset_section", "compensate"]
 
 ROUND = 0.995  # area / circumscribed circle area above which an outer contour is a pin
+SNAP = 1e-4    # mm: an offset's vertices closer than this to their neighbours' line are dropped
+GRID = 1e-5    # mm: the offset sections' vertices are rounded to this grid
 
 
 def is_round(ring: Polygon) -> bool:
@@ -56,7 +58,11 @@ def offset_section(shape, hole_bias: float, pin_bias: float, outline_bias: float
         outer = _grow(outer, -0.5 * (pin_bias if is_round(outer) else outline_bias))
         holes = [_grow(Polygon(r), -0.5 * hole_bias) for r in p.interiors]
         out.append(shapely.difference(outer, shapely.union_all(holes)) if holes else outer)
-    return shapely.union_all(out)
+    # drop vertices an offset leaves within SNAP of a straight line, and put the rest on a GRID: two slabs'
+    # offsets of one edge then share their vertices exactly (not 1e-8 mm apart: a float32 STL welds those
+    # into zero-area faces)
+    g = shapely.simplify(shapely.union_all(out), SNAP, preserve_topology=True)
+    return shapely.set_precision(g, GRID)
 
 
 def compensate(solid: m3d.Manifold, hole_bias: float, pin_bias: float, outline_bias: float) -> m3d.Manifold | None:
