@@ -22,13 +22,14 @@ from __future__ import annotations
 import math
 
 import manifold3d as m3d
+import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 from .measure import slabs
-from .solid import prisms
+from .solid import mesh_arrays, prisms
 
-__all__ = ["ROUND", "is_round", "offset_section", "compensate"]
+__all__ = ["ROUND", "is_round", "is_prism_stack", "offset_section", "compensate"]
 
 ROUND = 0.995  # area / circumscribed circle area above which an outer contour is a pin
 SNAP = 1e-4    # mm: an offset's vertices closer than this to their neighbours' line are dropped
@@ -65,11 +66,24 @@ def offset_section(shape, hole_bias: float, pin_bias: float, outline_bias: float
     return shapely.set_precision(g, GRID)
 
 
+def is_prism_stack(solid: m3d.Manifold, tol: float = 1e-9) -> bool:
+    """Every face is horizontal or vertical (its unit normal's z is 0 or ±1): a stack of z-prisms."""
+    v, f = mesh_arrays(solid)
+    t = v[f]
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+    length = np.linalg.norm(n, axis=1)
+    ok = length > 1e-12
+    nz = np.abs(n[ok, 2]) / length[ok]
+    return bool(np.all((nz < tol) | (nz > 1 - tol)))
+
+
 def compensate(solid: m3d.Manifold, hole_bias: float, pin_bias: float, outline_bias: float) -> m3d.Manifold | None:
     """The part modelled so it prints to size (see the module), or None when it is not a stack of
     z-prisms (then it cannot be compensated slab by slab)."""
     if hole_bias == 0 and pin_bias == 0 and outline_bias == 0:
         return solid
+    if not is_prism_stack(solid):
+        return None
     sl = slabs(solid)
     if not sl:
         return None
