@@ -3,6 +3,7 @@
 A kit built for a biased profile, *printed* (the bias applied to its STLs), has the unbiased kit's
 geometry: its nominal fits. Nothing is printed: the arithmetic is checked on the meshes."""
 
+import json
 import math
 from pathlib import Path
 
@@ -128,3 +129,28 @@ def test_tolerance_draws_around_the_bias(profiles):
     assert p_small > p0 + 0.05 and p_big < p0
     np.testing.assert_array_equal(n_comp, n0)
     assert p_comp == p0
+
+
+def test_only_prism_stacks_are_compensated():
+    import manifold3d as m3d
+    from partgen.geometry.compensate import is_prism_stack
+    post = m3d.Manifold.cylinder(5.0, 2.5, 2.5, 64)
+    cone = m3d.Manifold.cylinder(5.0, 2.5, 2.0, 64)
+    assert is_prism_stack(post) and not is_prism_stack(cone)
+    assert compensate(cone, HOLE, PIN, OUTLINE) is None
+    trimmed = compensate(post, HOLE, PIN, OUTLINE)
+    r = max(math.hypot(x, y) for x, y in section(trimmed, 2.5).exterior.coords)
+    assert 2 * r == pytest.approx(5.0 - PIN, abs=1e-3)  # a round contour takes the pin bias
+
+
+def test_outputs_say_whether_the_values_are_measured(profiles, tmp_path, capsys):
+    assert main(["build", str(DESIGN), "--printer", str(profiles["plain"]), "-o", str(tmp_path / "a"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["printer_values"] == "typical"
+    assert main(["build", str(DESIGN), "--printer", str(profiles["plain"]), "-o", str(tmp_path / "b"), "-q"]) == 0
+    assert "typical values, not measured" in capsys.readouterr().err
+    cal = tmp_path / "cal.yaml"
+    assert main(["calibrate", "--printer", "prusa_mk4", str(ROOT / "configs" / "calibration" / "example_results.yaml"),
+                 "-o", str(cal)]) == 0
+    capsys.readouterr()
+    assert main(["build", str(DESIGN), "--printer", str(cal), "-o", str(tmp_path / "c"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["printer_values"] == "measured"
