@@ -23,6 +23,7 @@ from . import pipeline
 from .core.protocol import tolerance_hook
 from .design.tolerance import ChunkTally, MarginModel, add_tallies, chunk_sizes, run_chunk, summarise
 from .errors import ConfigError, OptionError
+from .export.biases import biased_model
 from .export.outputs import open_incremental
 from .export.prints import printed_groups, stale_files
 
@@ -77,7 +78,7 @@ def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None =
     result = loaded.mechanism.check(loaded.spec, kit, check_samples, angles if bar.enabled else None)
     seconds = time.perf_counter() - t0
     acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
-    return hook(loaded.spec, kit, result, acc), result, seconds
+    return biased_model(hook(loaded.spec, kit, result, acc), kit), result, seconds
 
 
 def _write_atomic(path: Path, text: str) -> None:
@@ -199,7 +200,8 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                     "design_digest": header["design"], "model_digest": model.digest(), "seed": int(seed),
                     "chunk": int(chunk), "chunks": info["chunks"], "resumed_chunks": info["resumed_chunks"],
                     "nominal_check_ok": nominal.ok, "accuracy_source": "--accuracy-mm" if accuracy_mm is not None
-                    else f"printer {raw.printer.name} xy_accuracy_mm",
+                    else f"printer {raw.printer.name} xy_accuracy_mm"
+                    + ("" if raw.printer.measured else ": typical, not measured"),
                     "workers": info["workers"], "seconds": {"cluster_wait": round(t_cluster, 3),
                                                             "nominal_check": round(check_s, 3),
                                                             "samples": info["seconds"]}})
@@ -323,8 +325,8 @@ def sweep_point(shared: dict, index: int, values: dict) -> dict:
     m = shared["tolerance_samples"]
     hook = tolerance_hook(loaded.mechanism)
     if m and hook is not None:
-        model = hook(loaded.spec, kit, result, kit.printer.xy_accuracy if shared["accuracy"] is None
-                     else shared["accuracy"])
+        model = biased_model(hook(loaded.spec, kit, result, kit.printer.xy_accuracy if shared["accuracy"] is None
+                                  else shared["accuracy"]), kit)
         total = add_tallies([run_chunk(model, shared["seed"], i, n) for i, n in enumerate(chunk_sizes(m, CHUNK))])
         s = summarise(model, total)
         row.update(jam_probability=s["overall"]["probability"], jam_ci95_low=s["overall"]["ci95"][0],

@@ -24,7 +24,8 @@ ALLOWED = {
     "pipeline": {"core", "config", "export", "mechanisms", "errors"},
     "cluster": {"errors"},
     "studies": {"core", "config", "design", "export", "mechanisms", "pipeline", "cluster", "errors"},
-    "cli": {"pipeline", "studies", "cluster", "export", "errors", "__init__"},
+    "calibration": {"core", "config", "design", "geometry", "export", "errors"},
+    "cli": {"pipeline", "studies", "calibration", "cluster", "export", "errors", "__init__"},
     "__init__": {"pipeline", "errors"},
     "__main__": {"cli"},
 }
@@ -38,6 +39,7 @@ FORBIDDEN_LIBS = {
     "cli": {"manifold3d"},
     "cluster": {"manifold3d"},
     "studies": {"manifold3d"},
+    "calibration": {"manifold3d"},
 }
 MANIFOLD_ONLY_IN = {"geometry"}  # the one manifold3d importer (mechanisms may hold its solids, not make them)
 

@@ -49,12 +49,16 @@ def run(args) -> int:
                     "parts": [{k: p[k] for k in ("name", "role", "count", "file", "volume_mm3", "mass_g")}
                               for p in man["parts"]], "purchased": man.get("purchased", []),
                     "findings": [{"severity": f.severity, "key": f.key, "message": f.message} for f in findings],
+                    "printer_values": "measured" if kit.printer.measured else "typical",
                     "seconds": round(time.perf_counter() - t0, 3)})
         return 0
     for f in findings:
         if f.severity == "warn" or not args.quiet:
             word = "warning" if f.severity == "warn" else "note"
             print(f"partgen: {word}: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
+    if not kit.printer.measured and not args.quiet:
+        note(f"{kit.printer.name}: the profile's fits and accuracy are typical values, not measured on your printer "
+             "(`partgen coupon --printer ...` prints a test that measures them; see docs/calibrate.md)")
     seconds = time.perf_counter() - t0
     if args.quiet:  # only what was written
         print(f"wrote {dest}/ ({len(man['parts'])} distinct parts, "

@@ -18,6 +18,8 @@ import traceback
 
 from ..errors import MeshError, OptionError, PartgenError
 from . import build as build_cmd
+from . import calibrate as calibrate_cmd
+from . import coupon as coupon_cmd
 from . import check as check_cmd
 from . import report as report_cmd
 from . import trace as trace_cmd
@@ -73,6 +75,8 @@ def parser() -> argparse.ArgumentParser:
     report_cmd.add_parser(sub)
     tolerance_cmd.add_parser(sub)
     sweep_cmd.add_parser(sub)
+    coupon_cmd.add_parser(sub)
+    calibrate_cmd.add_parser(sub)
     return ap
 
 

@@ -234,4 +234,14 @@ def printer_limits(p: Printer) -> PrinterLimits:
                          layer_height=p.layer_height_mm, xy_accuracy=p.xy_accuracy_mm,
                          running_clearance=p.fits.running_clearance_diametral_mm if p.fits else None,
                          press_clearance=p.fits.press_fit_clearance_diametral_mm if p.fits else None,
-                         overhang_deg=p.overhang_deg)
+                         overhang_deg=p.overhang_deg, **biases_of(p))
+
+
+def biases_of(p: Printer) -> dict:
+    """The profile's biases as ``PrinterLimits`` fields (all 0, no compensation, when it gives none)."""
+    b = p.biases
+    out = {"measured": p.measured}
+    if b is not None:
+        out.update(hole_bias=b.hole_diametral_mm, pin_bias=b.pin_diametral_mm, outline_bias=b.outline_diametral_mm,
+                   compensate=b.compensate)
+    return out

@@ -55,6 +55,32 @@ class Fits(Strict):
         description="a pin turns freely in a hole this much larger (revolute joints)")
     press_fit_clearance_diametral_mm: Annotated[float, Field(ge=-1, le=5)] = Field(
         description="a pin pressed into a hole this much larger stays put (negative: interference)")
+    gear_backlash_circumferential_mm: Annotated[float, Field(ge=0, le=5)] | None = Field(
+        None, description="least total backlash of a printed spur pair that turns smoothly (coupon; informative)")
+
+
+Bias = Annotated[float, Field(ge=-2, le=2)]
+
+
+class Biases(Strict):
+    """Mean deviations of printed features (printed minus modelled, as a diameter, mm): what
+    ``partgen calibrate`` measured. ``compensate``: `build` opens holes and trims outlines by them
+    (then leave the slicer's XY compensation at 0)."""
+
+    hole_diametral_mm: Bias = Field(0.0, description="a hole prints this much larger (negative: undersize)")
+    pin_diametral_mm: Bias = Field(0.0, description="a pin, post or boss prints this much larger")
+    outline_diametral_mm: Bias = Field(0.0, description="any other outline (gear teeth, plates) prints this much larger")
+    compensate: bool = Field(True, description="build compensates the geometry by these biases")
+
+
+class Calibration(Strict):
+    """Where a profile's measured values came from (written by ``partgen calibrate``)."""
+
+    coupon: Annotated[int, Field(ge=1, le=1000)]
+    results: Annotated[str, Field(max_length=500)]
+    printed_on: Annotated[str, Field(max_length=100)] | None = None
+    calibrated_on: Annotated[str, Field(max_length=100)] | None = None
+    from_profile: Annotated[str, Field(max_length=200)] | None = None
 
 
 class Printer(Strict):
@@ -80,6 +106,10 @@ class Printer(Strict):
     overhang_deg: Annotated[float, Field(ge=0, le=89)] = Field(
         45.0, description="steepest overhang printed without supports, from the vertical")
     fits: Fits | None = None
+    biases: Biases | None = None
+    measured: bool = Field(False, description="fits, accuracy and biases were measured on this machine (false: "
+                           "typical values for its kind)")
+    calibration: Calibration | None = None
 
     @model_validator(mode="after")
     def _one_each(self):

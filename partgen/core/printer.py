@@ -18,6 +18,9 @@ class PrinterLimits:
     smallest reliable gear (pitch diameter); min_link: the smallest link. running_clearance,
     press_clearance: the fits the maker measured (diametral; None when the profile gives none).
     overhang_deg: the steepest overhang printed without supports, from the vertical.
+    hole_bias, pin_bias, outline_bias: mean deviation of a printed hole, pin and other outline
+    (printed minus modelled, as a diameter; 0 when unmeasured). compensate: `build` opens holes and
+    trims outlines by them. measured: the profile's values come from a calibration coupon.
     """
 
     name: str
@@ -34,6 +37,11 @@ class PrinterLimits:
     running_clearance: float | None = None
     press_clearance: float | None = None
     overhang_deg: float = 45.0
+    hole_bias: float = 0.0
+    pin_bias: float = 0.0
+    outline_bias: float = 0.0
+    compensate: bool = False
+    measured: bool = False
 
     @property
     def min_wall(self) -> float:

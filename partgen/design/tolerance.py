@@ -293,3 +293,16 @@ def summarise(model: MarginModel, total: ChunkTally, top: int = 12) -> dict:
     return {"samples": n, "accuracy_mm": model.accuracy_mm, "features": len(model.features),
             "margins": len(model.margins), "overall": _prob(total.jams, n), "groups": groups, "units": rows,
             "sensitivity": {"by_kind": by_kind, "by_feature": by_feature}}
+
+
+def with_means(model: MarginModel, mean: np.ndarray, why: str = "") -> MarginModel:
+    """``model`` with each feature's deviation drawn around ``mean`` (F,), mm, rather than 0: a printer's
+    measured bias (a hole prints 0.12 mm small: mean -0.12). The margins are linear in the deviations,
+    so δ = mean + σ·z moves margin k's nominal by Σ_f coeff[f, k]·mean_f exactly; the spread is unchanged."""
+    mean = np.asarray(mean, dtype=float)
+    if mean.shape != model.sigma.shape or not np.all(np.isfinite(mean)):
+        raise ValueError(f"mean must be ({len(model.features)},) finite mm")
+    if not np.any(mean):
+        return model
+    return MarginModel(model.features, model.margins, model.coeff, model.sigma, model.nominal + mean @ model.coeff,
+                       model.accuracy_mm, model.source + (f"; {why}" if why else ""))

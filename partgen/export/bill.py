@@ -21,7 +21,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
     html), and with ``steps`` (``export.assembly.steps_of``) ("Assembly", html): the steps in order
     with the pictures of their parts. ``groups``: the kit's printed parts grouped
     (``export.kit.group_parts``), if made already."""
-    groups = groups or group_parts([printed(p) for p in kit.parts if p.printed])
+    groups = groups or group_parts([printed(p, kit.printer) for p in kit.parts if p.printed])
     colour = lambda role: colours.get(role, "#999")  # noqa: E731
     poses = kit.poses(0.0)
     scene = []

@@ -15,6 +15,7 @@ import trimesh
 from ..core.protocol import Kit
 from ..geometry.parts import Part
 from ..errors import MeshError
+from ..geometry.compensate import compensate
 from ..geometry.solid import mesh_arrays, print_arrays
 from .outputs import OutputClaim, atomic_dir
 from .verify import mesh_report, read_stl
@@ -32,9 +33,39 @@ class PrintedPart:
     local_from_print: np.ndarray
 
 
-def printed(part: Part) -> PrintedPart:
-    """Lay a part on the build plate (flipped if it prints upside down, lowest point at z = 0)."""
-    v, f, print_from_local = print_arrays(part.solid, part.print_flip)
+_COMPENSATED: dict = {}  # (id(solid), biases) -> (solid, compensated solid or None): one kit's parts at a time
+
+
+def biases(printer) -> tuple[float, float, float] | None:
+    """(hole, pin, outline) biases (mm, as a diameter) ``build`` compensates for a printer profile,
+    or None when it compensates nothing (no biases measured, or ``compensate: false``)."""
+    if printer is None or not getattr(printer, "compensate", False):
+        return None
+    b = (printer.hole_bias, printer.pin_bias, printer.outline_bias)
+    return b if any(b) else None
+
+
+def compensated(part: Part, printer) -> tuple[object, bool | None]:
+    """The solid a part is printed from: compensated for the printer's biases
+    (``geometry.compensate``), and whether it was (None: nothing to compensate; False: the part is
+    not a stack of z-prisms and is printed as designed)."""
+    b = biases(printer)
+    if b is None:
+        return part.solid, None
+    key = (id(part.solid), b)
+    if key not in _COMPENSATED or _COMPENSATED[key][0] is not part.solid:
+        if len(_COMPENSATED) > 256:
+            _COMPENSATED.clear()
+        _COMPENSATED[key] = (part.solid, compensate(part.solid, *b))
+    got = _COMPENSATED[key][1]
+    return (part.solid, False) if got is None else (got, True)
+
+
+def printed(part: Part, printer=None) -> PrintedPart:
+    """Lay a part on the build plate (flipped if it prints upside down, lowest point at z = 0),
+    compensated for ``printer``'s measured biases when its profile asks for it."""
+    solid, _ = compensated(part, printer)
+    v, f, print_from_local = print_arrays(solid, part.print_flip)
     # the mesh exactly as the STL stores it (float32), so the manifest describes the file
     mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
     stl = trimesh.exchange.stl.export_stl(mesh)
@@ -168,10 +199,19 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
         say(p.name)
         key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
         if key not in done:
-            done[key] = printed(p)
+            done[key] = printed(p, kit.printer)
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
     verify_parts(groups, str(design.get("name", kit.name)))
+    b = biases(kit.printer)
+    if b is not None:  # say what was compensated, and what was printed as designed
+        state = {p.name: compensated(p, kit.printer)[1] for p in kit.parts if p.printed}
+        design = {**design, "compensation": {
+            "hole_diametral_mm": b[0], "pin_diametral_mm": b[1], "outline_diametral_mm": b[2],
+            "what": "holes opened by -hole/2, round outer contours (pins, posts, bosses) trimmed by pin/2, "
+                    "other outer contours (teeth, plates) by outline/2, in every z-slab",
+            "compensated": sorted(n for n, s in state.items() if s),
+            "as_designed": sorted(n for n, s in state.items() if not s)}}
     man = manifest(kit, groups, design)
     bought = [p for p in kit.parts if not p.printed]
     if bought:

@@ -45,6 +45,7 @@ _LEGACY = {
     "report": re.compile(r"^index\.html$"),
     "tolerance": re.compile(r"^(chunks\.jsonl|result\.json)$"),
     "sweep": re.compile(r"^(points\.(csv|jsonl)|index\.html)$"),
+    "coupon": re.compile(r"^(.+\.stl|coupon\.(3mf|png)|instructions\.html|results\.yaml)$"),
 }
 _TEMP = re.compile(r"^\.(?P<name>.+)\.(?P<what>tmp|old)-(?P<pid>\d+)(-[A-Za-z0-9_]+)?$")
 

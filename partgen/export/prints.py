@@ -24,7 +24,7 @@ def printed_groups(kit: Kit) -> list[list[PrintedPart]]:
         for p in (p for p in kit.parts if p.printed):
             key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
             if key not in done:
-                done[key] = printed(p)
+                done[key] = printed(p, kit.printer)
             items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
         _GROUPS.clear()
         _GROUPS[id(kit)] = (kit, group_parts(items))
