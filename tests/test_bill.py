@@ -25,7 +25,7 @@ def belt_kit(tmp_path_factory):
 
 
 def test_build_prints_the_bill(belt_kit, capsys):
-    assert main(["build", str(CONFIGS / "butterfly_belt.yaml"), "-o", str(belt_kit), "-q"]) == 0
+    assert main(["build", str(CONFIGS / "butterfly_belt.yaml"), "-o", str(belt_kit)]) == 0
     out = capsys.readouterr().out
     man = json.loads((belt_kit / "manifest.json").read_text())
     density = man["design"]["density_g_cm3"] / 1000

@@ -56,7 +56,7 @@ def run(args) -> int:
         if f.severity == "warn" or not args.quiet:
             word = "warning" if f.severity == "warn" else "note"
             print(f"partgen: {word}: {loaded.path}: {f.key}: {f.message}", file=sys.stderr)
-    if not kit.printer.measured and not args.quiet:
+    if not kit.printer.measured:  # even with -q: every output that rests on typical values says so
         note(f"{kit.printer.name}: the profile's fits and accuracy are typical values, not measured on your printer "
              "(`partgen coupon --printer ...` prints a test that measures them; see docs/calibrate.md)")
     seconds = time.perf_counter() - t0
