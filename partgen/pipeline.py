@@ -17,6 +17,7 @@ from .config.overrides import Overrides, parse_set
 from .core.findings import Result
 from .core.protocol import Kit, Mechanism, Trace
 from .errors import ConfigError, DesignError
+from .export.gltf import motion_of
 from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output
 from .export.prints import plan_plates, plates_png, stale_finding, write_plate_files
@@ -133,7 +134,8 @@ def build(path, dest=None, progress=None, notify=None, over: Overrides | None = 
     design = mech.design_summary(spec, kit)  # every manifest says its kind, and what it prints on and in what
     design = {**design, **{k: v for k, v in (("kind", mech.kind), ("config", loaded.path.name),
                                              ("printer", kit.printer.name), ("material", kit.material)) if k not in design}}
-    man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress)
+    man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress,
+                    motion=motion_of(mech, spec, kit), colours=getattr(mech, "role_colours", None))
     return Built(loaded, kit, man, claim.dest)
 
 
