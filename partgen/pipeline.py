@@ -20,7 +20,7 @@ from .errors import ConfigError, DesignError
 from .export.gltf import motion_of
 from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output
-from .export.prints import plan_plates, plates_png, stale_finding, write_plate_files
+from .export.prints import plan_plates, plates_png, printed_groups, stale_finding, write_plate_files
 from .export.studies import saved_tolerance
 from .mechanisms import REGISTRY, load_design
 
@@ -181,6 +181,25 @@ def _add_stale(result: Result, kit: Kit, kit_dir: Path | None) -> None:
         result.add(found)
 
 
+def report_glb(loaded: Loaded, kit: Kit, kit_dir: Path | None, result: Result) -> bytes:
+    """The animated assembly the report shows: the kit folder's assembly.glb when the kit is this
+    design's (no stale finding) and the file animates over this mechanism's input, else made anew."""
+    from .export.gltf import read_glb
+    from .export.kit import assembly_glb
+
+    motion = motion_of(loaded.mechanism, loaded.spec, kit)
+    if kit_dir is not None and not any(f.check == "kit" for f in result.findings):  # stale_finding: STLs differ
+        try:
+            data = (kit_dir / "assembly.glb").read_bytes()
+            anims = read_glb(data)[0].get("animations") or []
+            if anims and anims[0].get("extras", {}).get("input_label") == motion.label:
+                return data
+        except (OSError, ValueError):
+            pass
+    return assembly_glb(kit, printed_groups(kit), [p for p in kit.parts if not p.printed], motion,
+                        getattr(loaded.mechanism, "role_colours", None))
+
+
 def report(target, dest=None, samples: int | None = None, progress=None, over: Overrides | None = None) -> Path:
     """Write DIR/index.html (default out/<name>/report/, or KITDIR/report): one self-contained page
     with the mechanism's sections, the bill of parts with pictures, what to buy, the build plates.
@@ -206,7 +225,8 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     say("pictures")
     tol = saved_tolerance(kit_dir / "tolerance" if kit_dir else Path("out") / raw.design.name / "tolerance",
                           raw.digest())
+    glb = report_glb(loaded, kit, kit_dir, result)
     out = claim.dest
     with atomic_dir(claim) as tmp:
-        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol), encoding="utf-8")
+        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol, glb), encoding="utf-8")
     return out

@@ -71,7 +71,8 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     m = re.search(r"<title>IMAGES:(\d+):(\d+):H2:(\d+)</title>", dom)
     assert m, dom[:500]
     total, loaded, headings = map(int, m.groups())
-    assert total >= 40 and loaded == total and headings == 8  # design, bill of parts, filament, assembly, stacking, trace, check, build plates
+    # 3-d view, design, bill of parts, filament, assembly, stacking, trace, check, build plates
+    assert total >= 40 and loaded == total and headings == 9
     shot = tmp_path / "shot.png"
     subprocess.run(cmd[:-2] + ["--window-size=1280,2000", f"--screenshot={shot}", probe.as_uri()],
                    capture_output=True, timeout=120)
@@ -79,3 +80,23 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     img = Image.open(shot).convert("RGB")
     assert img.size == (1280, 2000)
     assert len(img.getcolors(1 << 22)) > 50  # the page drew pictures, not a blank
+
+
+def test_page_with_its_3d_view_stays_under_15_mb(page):
+    assert page.stat().st_size < 15e6
+
+
+def test_3d_view_of_the_default_chain_works_in_headless_chromium(page):
+    """50 parts: the view loads, draws, moves, picks; its button shows the tightest clearance's moment."""
+    import math
+
+    from viewer_probe import changed, drawn, need_browser, probe
+    need_browser()
+    got = probe(page)
+    assert got["ready"] and got["errors"] == [], (got.get("view_error"), got["errors"])
+    assert got["load_s"] < 30
+    assert drawn(got["first"]) > 0.03 and changed(got["first"], got["moved"]) > 0.002
+    assert got["picked"] and len(got["rows_highlighted"]) == 1 and got["cleared"]
+    text = page.read_text()
+    m = re.search(r"tightest clearance ([0-9.]+) mm between (\S+) and (\S+) at crank angle ([0-9.]+)°", text)
+    assert m and got["tight"] == pytest.approx(math.radians(float(m.group(4))), abs=0.02)
