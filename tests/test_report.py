@@ -64,7 +64,9 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     assert BROWSER, "chromium missing: .ci/run installs it with scripts/install-browser.sh"
     probe = tmp_path / "probe.html"
     probe.write_text(page.read_text().replace("</body>", PROBE, 1))
-    cmd = [BROWSER, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    # no WebGL here (the 3-D view, animating in software for the whole virtual time, is
+    # tests/test_viewer.py's and the test below): this test is about the page and its images
+    cmd = [BROWSER, "--headless", "--no-sandbox", "--disable-gpu", "--disable-3d-apis", "--disable-quic", "--no-first-run",
            "--disable-background-networking", "--disable-component-update", "--disable-sync",
            f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=15000", "--dump-dom", probe.as_uri()]
     dom = subprocess.run(cmd, capture_output=True, text=True, timeout=120).stdout

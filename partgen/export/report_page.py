@@ -34,6 +34,8 @@ def kit_page(mech: Mechanism, spec, kit: Kit, result: Result, trace: Trace, file
                                          f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "
                                          "their 3MF files.</figcaption></figure>"))
     if glb is not None:
-        rows = {it.part.name: grp[0].part.name for grp in printed_groups(kit) for it in grp}
-        sections.insert(0, viewer_section(glb, kit, motion_of(mech, spec, kit), result, rows))
+        groups = printed_groups(kit)
+        rows = {it.part.name: grp[0].part.name for grp in groups for it in grp}
+        frames = {it.part.name: it.local_from_print for grp in groups for it in grp}
+        sections.insert(0, viewer_section(glb, kit, motion_of(mech, spec, kit), result, rows, frames))
     return R.page(f"partgen report: {kit.name}", sections, mech.subtitle(spec))

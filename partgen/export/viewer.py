@@ -22,6 +22,8 @@ import json
 import math
 from importlib import resources
 
+import numpy as np
+
 from ..core.findings import Result
 from ..core.protocol import Kit
 
@@ -132,12 +134,12 @@ try {
     // the tightest clearance: a ring where it happens (in the kit's mm, Z up: a child of the root node)
     const assembly = root.getObjectByName('assembly') || root;
     let marker = null;
-    if (data.tightest) {
+    if (data.tightest) {  // in the frame of the first part named, so it rides along with that part
       const t = data.tightest, r = Math.max(2.0, radius * 1000 * 0.02);
       marker = new THREE.Mesh(new THREE.TorusGeometry(r, r * 0.18, 12, 48),
                               new THREE.MeshBasicMaterial({color: 0xd62728, depthTest: false, transparent: true}));
-      marker.renderOrder = 10; marker.position.set(...t.location_mm);
-      assembly.add(marker);
+      marker.renderOrder = 10; marker.position.set(...t.local_mm);
+      (root.getObjectByName(t.parts[0]) || assembly).add(marker);
       document.getElementById('pg-tight').onclick = () => { pause(); setTime(timeOf(t.theta)); frame(); };
     }
     const rows = new Map();  // the bill's row of each part (a part printed several times: its group's row)
@@ -189,15 +191,16 @@ try {
       marker?.lookAt(camera.position);
       renderer.render(scene, camera);
     }
-    function loop(now) {
-      if (playing) setTime(time + (now - last) / 1000);
-      last = now; frame(); requestAnimationFrame(loop);
+    function loop(now) {  // draws only while playing: a still view costs nothing
+      if (playing) { setTime(time + (now - last) / 1000); frame(); }
+      last = now; requestAnimationFrame(loop);
     }
     function play() { if (!action) return; playing = true; playBtn.textContent = 'Pause'; last = performance.now(); }
     function pause() { playing = false; playBtn.textContent = 'Play'; }
     playBtn.onclick = () => (playing ? pause() : play());
     slider.oninput = () => { pause(); setTime(timeOf(parseFloat(slider.value))); frame(); };
     controls.addEventListener('change', () => { if (!playing) frame(); });
+    window.addEventListener('resize', () => { if (!playing) frame(); });
     setTime(0); playBtn.textContent = playing ? 'Pause' : 'Play';
     if (!action) { playBtn.disabled = true; slider.disabled = true; }
     select(null); frame(); requestAnimationFrame(loop);
@@ -211,9 +214,12 @@ try {
 """
 
 
-def viewer_section(glb: bytes, kit: Kit, motion, result: Result, rows: dict[str, str]) -> tuple[str, str]:
+def viewer_section(glb: bytes, kit: Kit, motion, result: Result, rows: dict[str, str],
+                   frames: dict[str, np.ndarray] | None = None) -> tuple[str, str]:
     """("3-D view", html): the view of ``glb`` (the kit's animated assembly) over ``motion``; ``rows``:
-    part name -> the bill's row name (a part printed several times shares its group's row)."""
+    part name -> the bill's row name (a part printed several times shares its group's row);
+    ``frames``: part name -> its node's frame in the part's local one (the STL's,
+    ``local_from_print``; identity when not given)."""
     from .gltf import read_glb
 
     doc, _ = read_glb(glb)
@@ -221,6 +227,10 @@ def viewer_section(glb: bytes, kit: Kit, motion, result: Result, rows: dict[str,
     extras = anim.get("extras", {})
     lo, hi = (float(x) for x in extras.get("input_range", motion.range))
     tight = tightest_clearance(result)
+    if tight is not None:  # where it happens, in the node frame of its first part at that moment
+        name = tight["parts"][0]
+        node = kit.poses(tight["theta"])[name] @ (frames or {}).get(name, np.eye(4))
+        tight["local_mm"] = [float(x) for x in (np.linalg.inv(node) @ np.append(tight["location_mm"], 1.0))[:3]]
     data = {"label": extras.get("input_label", motion.label), "unit": extras.get("input_unit", motion.unit),
             "range": [lo, hi], "mode": extras.get("mode", "turn"), "still": not anim,
             "roles": {p.name: p.role for p in kit.parts}, "rows": rows, "tightest": tight,
