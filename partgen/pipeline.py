@@ -219,7 +219,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     _add_stale(result, kit, kit_dir)
     say("trace")
     with tempfile.TemporaryDirectory() as tmpdir:
-        tr = mech.trace(spec, kit, None, Path(tmpdir), True)
+        tr = mech.trace(spec, kit, None, Path(tmpdir), False)  # no 2-D animation: the 3-D view moves
         files = {name: (Path(tmpdir) / name).read_bytes() for name in tr.files}
     plates = plates_png(kit, mech.plate_margin(spec), result)
     say("pictures")
