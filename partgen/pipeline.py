@@ -200,6 +200,18 @@ def report_glb(loaded: Loaded, kit: Kit, kit_dir: Path | None, result: Result) -
                         getattr(loaded.mechanism, "role_colours", None))
 
 
+def kit_links(kit_dir: Path, report_dir: Path) -> list[tuple[str, str]]:
+    """(name, relative href from the report's folder) of the kit's files a maker opens: the GLB, the
+    manifest, every STL, the build plates' 3MF files (those there now)."""
+    import os
+
+    rel = os.path.relpath(kit_dir.resolve(), report_dir.resolve() if report_dir.exists() else report_dir.absolute())
+    names = [n for n in ("assembly.glb", "manifest.json") if (kit_dir / n).is_file()]
+    names += sorted(p.name for p in kit_dir.glob("*.stl"))
+    names += sorted(f"plates/{p.name}" for p in (kit_dir / "plates").glob("*.3mf"))
+    return [(n, Path(rel, n).as_posix()) for n in names]
+
+
 def report(target, dest=None, samples: int | None = None, progress=None, over: Overrides | None = None) -> Path:
     """Write DIR/index.html (default out/<name>/report/, or KITDIR/report): one self-contained page
     with the mechanism's sections, the bill of parts with pictures, what to buy, the build plates.
@@ -227,6 +239,8 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
                           raw.digest())
     glb = report_glb(loaded, kit, kit_dir, result)
     out = claim.dest
+    links = kit_links(kit_dir, out) if kit_dir is not None else []
     with atomic_dir(claim) as tmp:
-        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol, glb), encoding="utf-8")
+        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol, glb, links),
+                                        encoding="utf-8")
     return out

@@ -67,3 +67,11 @@ def test_view_works_in_headless_chromium(pair_report):
     assert got["picked"] in ("base", "gear1", "gear2")
     assert got["rows_highlighted"] == [got["picked"]] and got["picked"] in got["status"]
     assert got["cleared"]
+
+
+def test_page_links_the_kits_files_relative_to_itself(pair_report):
+    kit, page = pair_report
+    hrefs = dict((name, href) for href, name in re.findall(r'<a href="([^"#][^"]*)">([^<]+)</a>', page.read_text()))
+    assert set(hrefs) == {"assembly.glb", "manifest.json", "base.stl", "gear1.stl", "gear2.stl"}
+    for name, href in hrefs.items():
+        assert (page.parent / href).resolve() == (kit / name).resolve()

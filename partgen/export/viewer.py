@@ -215,11 +215,11 @@ try {
 
 
 def viewer_section(glb: bytes, kit: Kit, motion, result: Result, rows: dict[str, str],
-                   frames: dict[str, np.ndarray] | None = None) -> tuple[str, str]:
+                   frames: dict[str, np.ndarray] | None = None, links=()) -> tuple[str, str]:
     """("3-D view", html): the view of ``glb`` (the kit's animated assembly) over ``motion``; ``rows``:
     part name -> the bill's row name (a part printed several times shares its group's row);
     ``frames``: part name -> its node's frame in the part's local one (the STL's,
-    ``local_from_print``; identity when not given)."""
+    ``local_from_print``; identity when not given); ``links``: (name, href) of the kit's files."""
     from .gltf import read_glb
 
     doc, _ = read_glb(glb)
@@ -254,7 +254,10 @@ def viewer_section(glb: bytes, kit: Kit, motion, result: Result, rows: dict[str,
             f'<div class="pg-status" id="pg-status">Loading the 3-D view …</div></div>'
             f"<p>The assembly moves over its {html.escape(data['label'])}, {span} ({how}); the same animation is in "
             "the kit's <code>assembly.glb</code>, which any glTF viewer plays. Parts are coloured by role.</p>"
-            f'<script type="application/json" id="pg-viewer-data">{payload}</script>'
+            + (f'<p class="pg-files">The kit\'s files: ' + " · ".join(
+                f'<a href="{html.escape(href)}">{html.escape(name)}</a>' for name, href in links) + "</p>"
+               if links else "")
+            + f'<script type="application/json" id="pg-viewer-data">{payload}</script>'
             f'<script type="application/octet-stream" id="pg-glb">{base64.b64encode(glb).decode("ascii")}</script>'
             f"{_import_map()}<script type=\"module\">{SCRIPT}</script>")
     return ("3-D view", body)
