@@ -7,7 +7,7 @@
 Each command runs in a fresh process (`partgen build CONFIG -o KIT -q`, then `check KIT`, `trace
 KIT` and `report KIT`), interleaved run by run so a busy machine slows them alike; the figure is
 the median wall time of each. It prints the ratios check/build, trace/build and report/build with
-the issue's targets (report ≤ 3×, check ≤ 2.5× the build, the default chain). It never fails on a
+the issues' targets (report ≤ 2× (issue 29), check ≤ 2.5× the build, the default chain). It never fails on a
 time: it reports.
 """
 
@@ -22,7 +22,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = {"check": 2.5, "report": 3.0}
+TARGETS = {"check": 2.5, "report": 2.0}  # report: issue 29 (was 3×)
 
 
 def run(argv: list[str]) -> float:

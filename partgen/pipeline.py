@@ -17,9 +17,10 @@ from .config.overrides import Overrides, parse_set
 from .core.findings import Result
 from .core.protocol import Kit, Mechanism, Trace
 from .errors import ConfigError, DesignError, OptionError
+from .export.gltf import motion_of
 from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output, is_partgen_kit, read_marker
-from .export.prints import plan_plates, plates_png, stale_finding, write_plate_files
+from .export.prints import plan_plates, plates_png, printed_groups, stale_finding, write_plate_files
 from .export.studies import saved_tolerance
 from .mechanisms import REGISTRY, load_design
 
@@ -164,7 +165,8 @@ def build(path, dest=None, progress=None, notify=None, over: Overrides | None = 
     design = mech.design_summary(spec, kit)  # every manifest says its kind, and what it prints on and in what
     design = {**design, **{k: v for k, v in (("kind", mech.kind), ("config", loaded.path.name),
                                              ("printer", kit.printer.name), ("material", kit.material)) if k not in design}}
-    man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress)
+    man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress,
+                    motion=motion_of(mech, spec, kit), colours=getattr(mech, "role_colours", None))
     return Built(loaded, kit, man, claim.dest)
 
 
@@ -209,6 +211,37 @@ def _add_stale(result: Result, kit: Kit, kit_dir: Path | None) -> None:
         result.add(found)
 
 
+def report_glb(loaded: Loaded, kit: Kit, kit_dir: Path | None, result: Result) -> bytes:
+    """The animated assembly the report shows: the kit folder's assembly.glb when the kit is this
+    design's (no stale finding) and the file animates over this mechanism's input, else made anew."""
+    from .export.gltf import read_glb
+    from .export.kit import assembly_glb
+
+    motion = motion_of(loaded.mechanism, loaded.spec, kit)
+    if kit_dir is not None and not any(f.check == "kit" for f in result.findings):  # stale_finding: STLs differ
+        try:
+            data = (kit_dir / "assembly.glb").read_bytes()
+            anims = read_glb(data)[0].get("animations") or []
+            if anims and anims[0].get("extras", {}).get("input_label") == motion.label:
+                return data
+        except (OSError, ValueError):
+            pass
+    return assembly_glb(kit, printed_groups(kit), [p for p in kit.parts if not p.printed], motion,
+                        getattr(loaded.mechanism, "role_colours", None))
+
+
+def kit_links(kit_dir: Path, report_dir: Path) -> list[tuple[str, str]]:
+    """(name, relative href from the report's folder) of the kit's files a maker opens: the GLB, the
+    manifest, every STL, the build plates' 3MF files (those there now)."""
+    import os
+
+    rel = os.path.relpath(kit_dir.resolve(), report_dir.resolve() if report_dir.exists() else report_dir.absolute())
+    names = [n for n in ("assembly.glb", "manifest.json") if (kit_dir / n).is_file()]
+    names += sorted(p.name for p in kit_dir.glob("*.stl"))
+    names += sorted(f"plates/{p.name}" for p in (kit_dir / "plates").glob("*.3mf"))
+    return [(n, Path(rel, n).as_posix()) for n in names]
+
+
 def report(target, dest=None, samples: int | None = None, progress=None, over: Overrides | None = None) -> Path:
     """Write DIR/index.html (default out/<name>/report/, or KITDIR/report): one self-contained page
     with the mechanism's sections, the bill of parts with pictures, what to buy, the build plates.
@@ -227,13 +260,16 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     _add_stale(result, kit, kit_dir)
     say("trace")
     with tempfile.TemporaryDirectory() as tmpdir:
-        tr = mech.trace(spec, kit, None, Path(tmpdir), True)
+        tr = mech.trace(spec, kit, None, Path(tmpdir), False)  # no 2-D animation: the 3-D view moves
         files = {name: (Path(tmpdir) / name).read_bytes() for name in tr.files}
     plates = plates_png(kit, mech.plate_margin(spec), result)
     say("pictures")
     tol = saved_tolerance(kit_dir / "tolerance" if kit_dir else Path("out") / raw.design.name / "tolerance",
                           raw.digest())
+    glb = report_glb(loaded, kit, kit_dir, result)
     out = claim.dest
+    links = kit_links(kit_dir, out) if kit_dir is not None else []
     with atomic_dir(claim) as tmp:
-        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol), encoding="utf-8")
+        (tmp / "index.html").write_text(kit_page(mech, spec, kit, result, tr, files, plates, tol, glb, links),
+                                        encoding="utf-8")
     return out

@@ -117,6 +117,7 @@ def test_assembly_glb_opens_with_every_part(built_kits):
     from partgen.design.synthesis import trace
     pen = trace(built.mechanism.chain, np.array([0.0]))[0] - built.mechanism.chain.offset
     T, geom = scene.graph["pen_holder"]
+    T = np.linalg.inv(scene.graph["assembly"][0]) @ T  # undo the root's metres and Y up: the kit's mm, Z up
     v = scene.geometry[geom].vertices
     flip = next(p for p in man["parts"] if p["name"] == "pen_holder")["print_flip"]
     end = v[:, 2].min() if flip else v[:, 2].max()  # the tube's end (the spigot's is a D)

@@ -64,14 +64,17 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     assert BROWSER, "chromium missing: .ci/run installs it with scripts/install-browser.sh"
     probe = tmp_path / "probe.html"
     probe.write_text(page.read_text().replace("</body>", PROBE, 1))
-    cmd = [BROWSER, "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    # no WebGL here (the 3-D view, animating in software for the whole virtual time, is
+    # tests/test_viewer.py's and the test below): this test is about the page and its images
+    cmd = [BROWSER, "--headless", "--no-sandbox", "--disable-gpu", "--disable-3d-apis", "--disable-quic", "--no-first-run",
            "--disable-background-networking", "--disable-component-update", "--disable-sync",
            f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=15000", "--dump-dom", probe.as_uri()]
     dom = subprocess.run(cmd, capture_output=True, text=True, timeout=120).stdout
     m = re.search(r"<title>IMAGES:(\d+):(\d+):H2:(\d+)</title>", dom)
     assert m, dom[:500]
     total, loaded, headings = map(int, m.groups())
-    assert total >= 40 and loaded == total and headings == 8  # design, bill of parts, filament, assembly, stacking, trace, check, build plates
+    # 3-d view, design, bill of parts, filament, assembly, stacking, trace, check, build plates
+    assert total >= 40 and loaded == total and headings == 9
     shot = tmp_path / "shot.png"
     subprocess.run(cmd[:-2] + ["--window-size=1280,2000", f"--screenshot={shot}", probe.as_uri()],
                    capture_output=True, timeout=120)
@@ -79,3 +82,23 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     img = Image.open(shot).convert("RGB")
     assert img.size == (1280, 2000)
     assert len(img.getcolors(1 << 22)) > 50  # the page drew pictures, not a blank
+
+
+def test_page_with_its_3d_view_stays_under_15_mb(page):
+    assert page.stat().st_size < 15e6
+
+
+def test_3d_view_of_the_default_chain_works_in_headless_chromium(page):
+    """50 parts: the view loads, draws, moves, picks; its button shows the tightest clearance's moment."""
+    import math
+
+    from viewer_probe import changed, drawn, need_browser, probe
+    need_browser()
+    got = probe(page)
+    assert got["ready"] and got["errors"] == [], (got.get("view_error"), got["errors"])
+    assert got["load_s"] < 30
+    assert drawn(got["first"]) > 0.03 and changed(got["first"], got["moved"]) > 0.002
+    assert got["picked"] and len(got["rows_highlighted"]) == 1 and got["cleared"]
+    text = page.read_text()
+    m = re.search(r"tightest clearance ([0-9.]+) mm between (\S+) and (\S+) at crank angle ([0-9.]+)°", text)
+    assert m and got["tight"] == pytest.approx(math.radians(float(m.group(4))), abs=0.02)

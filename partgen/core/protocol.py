@@ -116,6 +116,9 @@ class Mechanism(Protocol):
     # kit together, each with the parts it uses (the report shows them with their pictures). A
     # mechanism without it gets ``export.assembly.default_steps`` (base first, then kit order).
 
+    # Optional: ``animation_motion(spec, kit) -> Motion``, the input the kit's assembly.glb animates
+    # over when it is not ``motion`` (the wrist: its workspace's bend, which the kit decides).
+
     # Optional (see ``tolerance_hook``): a mechanism that offers `partgen tolerance` defines
     # tolerance_model(spec, kit, result, accuracy_mm) -> design.tolerance.MarginModel: the margins
     # of ``result`` (the nominal check of ``kit``) that decide whether it turns, as linear functions

@@ -1,5 +1,6 @@
-"""Write a kit: one binary STL per distinct part in its print orientation, manifest.json, and an
-assembly (GLB) at crank angle 0 — all or nothing (built in a temporary folder, then moved)."""
+"""Write a kit: one binary STL per distinct part in its print orientation, manifest.json, and the
+assembly (GLB, animated over the mechanism's motion: ``export.gltf``) — all or nothing (built in a
+temporary folder, then moved)."""
 
 from __future__ import annotations
 
@@ -12,11 +13,13 @@ from pathlib import Path
 import numpy as np
 import trimesh
 
-from ..core.protocol import Kit
+from ..core.protocol import Kit, Motion
 from ..geometry.parts import Part
 from ..errors import MeshError
 from ..geometry.compensate import compensate
 from ..geometry.solid import mesh_arrays, print_arrays
+from . import gltf
+from .gltf import Instance
 from .outputs import OutputClaim, atomic_dir
 from .verify import mesh_report, read_stl
 
@@ -158,21 +161,20 @@ def built_with() -> dict[str, str]:
     return out
 
 
-def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] = (), theta: float = 0.0) -> bytes:
-    """A GLB scene of every part at crank angle θ (one node per instance, meshes shared), bought
-    parts (belts) included."""
-    poses = kit.poses(theta)
-    scene = trimesh.Scene()
+def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] = (), motion: Motion | None = None,
+                 colours: dict[str, str] | None = None) -> bytes:
+    """The GLB of every part (``export.gltf``: metres, Y up, one mesh per distinct STL instanced by
+    its nodes, coloured by role), bought parts (belts) included; animated over ``motion`` when given."""
+    instances, solids = [], {}
     for p in bought:
-        v, f = mesh_arrays(p.solid)
-        scene.add_geometry(trimesh.Trimesh(v, f, process=False), node_name=p.name, geom_name=p.name,
-                           transform=poses[p.name])
+        if id(p.solid) not in solids:
+            v, f = mesh_arrays(p.solid)
+            solids[id(p.solid)] = trimesh.Trimesh(v, f, process=False)
+        instances.append(Instance(p, solids[id(p.solid)], np.eye(4)))
     for grp in groups:
-        geom_name = grp[0].part.name
         for it in grp:
-            scene.add_geometry(grp[0].mesh, node_name=it.part.name, geom_name=geom_name,
-                               transform=poses[it.part.name] @ it.local_from_print)
-    return scene.export(file_type="glb")
+            instances.append(Instance(it.part, grp[0].mesh, it.local_from_print))
+    return gltf.assembly_glb(kit, instances, motion, colours)
 
 
 def verify_parts(groups: list[list[PrintedPart]], design_name: str) -> None:
@@ -189,10 +191,11 @@ def verify_parts(groups: list[list[PrintedPart]], design_name: str) -> None:
 
 
 def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dict[str, bytes] | None = None,
-              progress=None) -> dict:
+              progress=None, motion: Motion | None = None, colours: dict[str, str] | None = None) -> dict:
     """Write the kit into ``dest`` (a folder, or an ``OutputClaim`` checked before the build)
     atomically; returns the manifest. Every distinct STL is verified first (``verify_parts``): a bad
-    part raises ``MeshError`` and nothing is written."""
+    part raises ``MeshError`` and nothing is written. ``motion`` animates assembly.glb over the
+    mechanism's input; ``colours`` (role -> '#rrggbb') colour its parts."""
     say = progress or (lambda name: None)
     items, done = [], {}
     for p in (p for p in kit.parts if p.printed):
@@ -218,7 +221,7 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
         man["purchased"] = [{"name": p.name, "role": p.role, **dict(p.info)} for p in bought]
     files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
     files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
-    files["assembly.glb"] = assembly_glb(kit, groups, bought)
+    files["assembly.glb"] = assembly_glb(kit, groups, bought, motion, colours)
     files.update(extra_files or {})
     with atomic_dir(dest) as tmp:
         for name, data in files.items():

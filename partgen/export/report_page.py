@@ -9,16 +9,21 @@ from ..core.protocol import Kit, Mechanism, Trace
 from . import report as R
 from .assembly import steps_of
 from .bill import bill_sections
+from .gltf import motion_of
 from .prints import printed_groups
 from .studies import tolerance_section
+from .viewer import viewer_section
 
 __all__ = ["kit_page"]
 
 
 def kit_page(mech: Mechanism, spec, kit: Kit, result: Result, trace: Trace, files: dict[str, bytes],
-             plates_png: bytes | None, tolerance: dict | None) -> str:
+             plates_png: bytes | None, tolerance: dict | None, glb: bytes | None = None,
+             links: list[tuple[str, str]] = ()) -> str:
     """The whole HTML page: ``files`` are the trace's figures by name, ``plates_png`` the build
-    plates' picture, ``tolerance`` the saved result of `partgen tolerance` (or None)."""
+    plates' picture, ``tolerance`` the saved result of `partgen tolerance` (or None), ``glb`` the
+    kit's animated assembly, shown first in the interactive 3-D view (``export.viewer``), ``links``
+    (name, href) the kit's files, linked under it."""
     purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
     sections = mech.report_sections(spec, kit, result, trace, files, {})
     own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
@@ -30,4 +35,9 @@ def kit_page(mech: Mechanism, spec, kit: Kit, result: Result, trace: Trace, file
         sections.append(("Build plates", f"<figure>{R.img(plates_png, 'build plates')}<figcaption>"
                                          f"{result.figures.get('plates', '?')} build plate(s); `partgen check` writes "
                                          "their 3MF files.</figcaption></figure>"))
+    if glb is not None:
+        groups = printed_groups(kit)
+        rows = {it.part.name: grp[0].part.name for grp in groups for it in grp}
+        frames = {it.part.name: it.local_from_print for grp in groups for it in grp}
+        sections.insert(0, viewer_section(glb, kit, motion_of(mech, spec, kit), result, rows, frames, links))
     return R.page(f"partgen report: {kit.name}", sections, mech.subtitle(spec))

@@ -398,7 +398,7 @@ class GearChain:
                       + f'<div class="grid"><figure>{R.img(files["trace.png"], "trace", width=640)}</figure>'
                       + (f'<figure>{R.img(files["trace.gif"], "animation", "image/gif", width=440)}<figcaption>One '
                          "crank turn.</figcaption></figure>" if "trace.gif" in files else "") + "</div>")
-        fails = [[f.check, f'<span class="{f.severity}">{f.severity}</span>', html.escape(f.message),
+        fails = [[f.check, f'<span class="{f.severity}">{f.severity}</span>', f.message,  # R.table escapes it
                   "" if f.theta is None else f"{math.degrees(f.theta):.1f}"] for f in result.findings]
         fig = result.figures
         close = fig["motion"].get("closest_approach")

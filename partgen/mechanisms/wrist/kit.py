@@ -48,8 +48,9 @@ class WristKit(ParamsKit):
         return sph.gear2_pose(theta, psi, self.spec.I, self.spec.A)
 
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
-        """Poses at rest (θ = 0: straight) — the assembly the manifest places."""
-        out = {"gear1": np.eye(4), "gear2": self.pose2(0.0, 0.0)}
+        """Poses with the pair bent by θ on gear 1 (within the workspace: θ ≤ ``theta_max``) at
+        azimuth ψ = 0; θ = 0 is the pair at rest (straight), the assembly the manifest places."""
+        out = {"gear1": np.eye(4), "gear2": self.pose2(min(max(float(theta), 0.0), self.theta_max), 0.0)}
         shown_beside = np.eye(4)  # the cross gear is the other tooth form, not part of this pair
         shown_beside[0, 3] = -1.5 * self.spec.A
         out["cross_gear"] = shown_beside

@@ -53,6 +53,10 @@ class Wrist:
     def name(self, spec: WristSpec) -> str:
         return spec.name
 
+    def animation_motion(self, spec: WristSpec, kit: WristKit) -> Motion:
+        """The assembly's animation bends the pair over its workspace: θ from 0 to ``theta_max``."""
+        return Motion(self.motion.label, self.motion.unit, (0.0, float(kit.theta_max)))
+
     def build(self, spec: WristSpec, progress=None) -> WristKit:
         try:
             kit = build_wrist(spec, progress)
