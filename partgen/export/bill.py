@@ -10,7 +10,6 @@ from . import report as R
 from .kit import group_parts, printed
 from ..geometry.solid import mesh_arrays
 from .assembly import assembly_section
-from .render import render
 
 __all__ = ["bill_sections", "stock_items", "shopping_list", "printed_rows"]
 
@@ -21,6 +20,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
     html), and with ``steps`` (``export.assembly.steps_of``) ("Assembly", html): the steps in order
     with the pictures of their parts. ``groups``: the kit's printed parts grouped
     (``export.kit.group_parts``), if made already."""
+    from .render import render  # matplotlib: only when a report draws
     groups = groups or group_parts([printed(p, kit.printer) for p in kit.parts if p.printed])
     colour = lambda role: colours.get(role, "#999")  # noqa: E731
     poses = kit.poses(0.0)
