@@ -339,9 +339,12 @@ def test_written_plates_match_the_manifest(checked_kits, design):
             assert v[:, 2].min() == pytest.approx(0.0, abs=1e-9)  # still on the bed
             footprints.append((pn, _hull(v)))
         bed = box(-1e-6, -1e-6, W + 1e-6, H + 1e-6)
+        edge = max(margin / 2, loaded.spec.params.printer.plate_edge)  # the room a slicer's skirt needs
         for pn, hull in footprints:
             fp = hull.buffer(margin / 2, quad_segs=16)
             assert bed.contains(fp), f"{f.name}: {pn} sticks out of the {W:g} x {H:g} bed"
+            assert min(hull.bounds[0], hull.bounds[1], W - hull.bounds[2], H - hull.bounds[3]) >= edge - 1e-6, \
+                f"{f.name}: {pn} is closer than {edge:g} mm to the bed's edge"
         # footprints (hull + margin/2) may touch, never overlap: grown 10 nm less, they are disjoint,
         # and the hulls themselves are the margin apart
         for (na, a), (nb, b) in itertools.combinations(footprints, 2):

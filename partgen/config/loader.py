@@ -234,7 +234,7 @@ def printer_limits(p: Printer) -> PrinterLimits:
                          layer_height=p.layer_height_mm, xy_accuracy=p.xy_accuracy_mm,
                          running_clearance=p.fits.running_clearance_diametral_mm if p.fits else None,
                          press_clearance=p.fits.press_fit_clearance_diametral_mm if p.fits else None,
-                         overhang_deg=p.overhang_deg, **biases_of(p))
+                         overhang_deg=p.overhang_deg, plate_edge=p.plate_edge_mm, **biases_of(p))
 
 
 def biases_of(p: Printer) -> dict:

@@ -105,6 +105,9 @@ class Printer(Strict):
     min_link_length_mm: Length = Field(20.0, description="smallest link, joint to joint")
     overhang_deg: Annotated[float, Field(ge=0, le=89)] = Field(
         45.0, description="steepest overhang printed without supports, from the vertical")
+    plate_edge_mm: Annotated[float, Field(ge=0, le=100)] = Field(
+        7.0, description="room left between the parts and the bed's edge on a build plate, for the slicer's "
+        "skirt or brim (PrusaSlicer's default skirt lies 6 mm out from the parts and is one line wide)")
     fits: Fits | None = None
     biases: Biases | None = None
     measured: bool = Field(False, description="fits, accuracy and biases were measured on this machine (false: "

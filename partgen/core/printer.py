@@ -17,7 +17,8 @@ class PrinterLimits:
     min_wall_lines: the thinnest wall in lines (``min_wall`` = lines × line width). min_gear: the
     smallest reliable gear (pitch diameter); min_link: the smallest link. running_clearance,
     press_clearance: the fits the maker measured (diametral; None when the profile gives none).
-    overhang_deg: the steepest overhang printed without supports, from the vertical.
+    overhang_deg: the steepest overhang printed without supports, from the vertical. plate_edge: the
+    room a build plate leaves between the parts and the bed's edge (the slicer's skirt or brim).
     hole_bias, pin_bias, outline_bias: mean deviation of a printed hole, pin and other outline
     (printed minus modelled, as a diameter; 0 when unmeasured). compensate: `build` opens holes and
     trims outlines by them. measured: the profile's values come from a calibration coupon.
@@ -37,6 +38,7 @@ class PrinterLimits:
     running_clearance: float | None = None
     press_clearance: float | None = None
     overhang_deg: float = 45.0
+    plate_edge: float = 7.0
     hole_bias: float = 0.0
     pin_bias: float = 0.0
     outline_bias: float = 0.0

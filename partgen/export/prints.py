@@ -56,17 +56,35 @@ def plan_plates(kit: Kit, margin: float, result: Result):
     groups = printed_groups(kit)
     env = kit.printer.envelope
     meshes = {g[0].part.name: g[0].mesh for g in groups}
+    items = [(g[0].part.name, g[0].mesh, len(g)) for g in groups]
+    edge = max(0.0, getattr(kit.printer, "plate_edge", 0.0) - margin / 2)  # beyond the margin's half the packer keeps
     try:
-        lay = layout([(g[0].part.name, g[0].mesh, len(g)) for g in groups], (env[0], env[1]), margin)
-    except ValueError as e:
-        result.add(Finding("printability", "fail", f"build plates: {e}", getattr(e, "parts", ())))
-        return None, meshes, None
+        lay = _inset(layout(items, (env[0] - 2 * edge, env[1] - 2 * edge), margin), edge, (env[0], env[1]))
+    except ValueError:
+        try:  # a part too large for the room a skirt needs still prints: on the whole bed, and we say so
+            lay = layout(items, (env[0], env[1]), margin)
+        except ValueError as e:
+            result.add(Finding("printability", "fail", f"build plates: {e}", getattr(e, "parts", ())))
+            return None, meshes, None
+        result.add(Finding("printability", "info", f"build plates: a part leaves less than the "
+                           f"{kit.printer.plate_edge:g} mm the slicer's skirt or brim needs from the bed's edge "
+                           "(the printer profile's plate_edge_mm): print it without a skirt, or with the skirt closer"))
+        edge = 0.0
     result.figures["plates"] = len(lay.plates)
+    result.figures["plate_edge_mm"] = edge + margin / 2  # the least room from a part to the bed's edge
 
     def picture(path):
         plate_picture(lay, {n: footprint(m, margin) for n, m in meshes.items()}, path,
                       f"{kit.name}: {len(lay.plates)} build plate(s), {env[0]:g} × {env[1]:g} mm")
     return lay, meshes, picture
+
+
+def _inset(lay, edge: float, size: tuple[float, float]):
+    """A layout packed on a bed made ``edge`` mm smaller on every side, moved onto the whole bed."""
+    from dataclasses import replace
+
+    return replace(lay, size=size, plates=tuple(tuple(replace(p, x=p.x + edge, y=p.y + edge) for p in plate)
+                                                for plate in lay.plates))
 
 
 def plates_png(kit: Kit, margin: float, result: Result) -> bytes | None:
