@@ -60,14 +60,17 @@ def modelled_kinds() -> list[str]:
     return [k for k, m in REGISTRY.items() if tolerance_hook(m) is not None]
 
 
-def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None, progress: bool = False):
-    """(model, nominal check result, seconds of the check): the kit built once, checked once
-    (``progress``: a progress line over the check's crank angles, on a terminal)."""
+def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None, progress: bool = False,
+                  kit=None, seated: bool = True):
+    """(model, nominal check result, seconds of the check): the kit built once (or ``kit``), checked
+    once (``progress``: a progress line over the check's crank angles, on a terminal). ``seated``:
+    the gears sit where their meshes push them in their bores (docs/tolerance.md); ``worst_model``
+    gives the same check's model with every gear centred."""
     hook = tolerance_hook(loaded.mechanism)
     if hook is None:
         raise ConfigError(loaded.path, "kind", f"a {loaded.mechanism.kind} design offers no tolerance study yet "
                           f"(`partgen tolerance` runs on kind: {', '.join(modelled_kinds())})")
-    kit = pipeline.make_kit(loaded)
+    kit = kit if kit is not None else pipeline.make_kit(loaded)
     t0 = time.perf_counter()
     bar = C.Counter("nominal check, crank angles", 1, progress)
 
@@ -77,7 +80,14 @@ def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None =
     result = loaded.mechanism.check(loaded.spec, kit, check_samples, angles if bar.enabled else None)
     seconds = time.perf_counter() - t0
     acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
-    return hook(loaded.spec, kit, result, acc), result, seconds
+    return hook(loaded.spec, kit, result, acc, seated=seated), result, seconds
+
+
+def worst_model(loaded, kit, result, accuracy_mm: float | None):
+    """The model of the same nominal check with every gear centred on its post (no bore play
+    credited): the worst case reported beside the headline figure."""
+    acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
+    return tolerance_hook(loaded.mechanism)(loaded.spec, kit, result, acc, seated=False)
 
 
 def _write_atomic(path: Path, text: str) -> None:
@@ -183,13 +193,19 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                                       "tolerance", "tolerance", "-o")
     # an unreachable scheduler: exit 2, nothing written; a local cluster starts beside the build and check
     with C.starting(workers, scheduler, processes) as get_client:
-        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples, progress)
+        kit = pipeline.make_kit(loaded)
+        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples, progress, kit=kit)
+        worst = worst_model(loaded, kit, nominal, accuracy_mm)
         t1 = time.perf_counter()
         client = get_client()
         t_cluster = time.perf_counter() - t1  # the wait for the cluster after the nominal check
         header = {"study": "tolerance", "design": raw.digest(), "seed": int(seed)}
         total, info = sample(client, model, samples, seed, claim, resume, header, progress, chunk)
+        worst_total, _ = sample(client, worst, samples, seed, None, False, None, False, chunk)
     summary = summarise(model, total)
+    summary["seat"] = "gears pushed apart in their bores by their meshes (docs/tolerance.md)"
+    summary["worst_case"] = {"seat": "every gear centred on its post: no bore play credited",
+                             "model_digest": worst.digest(), **summarise(worst, worst_total)["overall"]}
     summary.update({"design": raw.design.name, "kind": loaded.mechanism.kind, "config": str(loaded.path),
                     "design_digest": header["design"], "model_digest": model.digest(), "seed": int(seed),
                     "chunk": int(chunk), "chunks": info["chunks"], "resumed_chunks": info["resumed_chunks"],

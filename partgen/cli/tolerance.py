@@ -73,7 +73,12 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
     lines = [f"{r['design']}: {r['samples']:,} simulated prints at ±{r['accuracy_mm']:g} mm ({r['accuracy_source']}), "
              f"{r['features']} printed features, {r['margins']} margins",
              f"P(jam) = {_pct(o['probability'])}  (95 % CI {_pct(o['ci95'][0])} – {_pct(o['ci95'][1])}; "
-             f"{o['jams']:,} of {r['samples']:,})", "",
+             f"{o['jams']:,} of {r['samples']:,}; gears seated by their meshes in their bores)"]
+    wc = r.get("worst_case")
+    if wc:
+        lines.append(f"worst case, every gear centred on its post (no bore play credited): P(jam) = "
+                     f"{_pct(wc['probability'])}  (95 % CI {_pct(wc['ci95'][0])} – {_pct(wc['ci95'][1])})")
+    lines += ["",
              f"{'where':<{w}}{'kind':<10}{'at':<9}{'nominal mm':>11}{'P(jam)':>10}   95 % CI"]
     for u in r["units"][:limit]:
         lines.append(f"{u['unit']:<{w}}{u['group']:<10}{u['where']:<9}{u['least_nominal_mm']:>11.4f}"

@@ -29,6 +29,14 @@ outline     a non-gear part's outline, as a diameter                  A / 3
 height      a printed height (a part's thickness, a spacer's height)  A / 3 (profiles give no
                                                                       z accuracy)
 =========== ========================================================= =====================
+
+Where a gear sits in its bore (``Play``, ``seat_factor``; docs/tolerance.md): a mesh that runs out
+of backlash touches on both flanks, and the two flank forces push its gears apart along the line
+of centres (their tangential parts cancel, whatever the driving sense), taking up the bores' radial
+play until the mesh runs free or the bore bottoms. A body with one mesh gives that mesh all of its
+play (κ = 1); a body with several (an idler, a link with its gear and an idler pin) moves along
+the sum of their separating directions and gives each mesh κ = min_k n̂·u_k of it at once. A model
+made with ``seated=False`` credits no play (each gear centred on its post: the worst case).
 """
 
 from __future__ import annotations
@@ -38,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
+__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "Play", "seat_factor", "seat_credit", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
            "wilson", "summarise", "chunk_sizes"]
 
 KINDS = ("hole", "pin", "tooth", "position", "outline", "height")
@@ -80,6 +88,45 @@ class Margin:
     what: str
     nominal: float
     where: str = ""
+
+
+@dataclass(frozen=True)
+class Play:
+    """A floating body's radial play in its bore: ``nominal`` mm + Σ terms[feature] · δ_feature
+    (terms as ``ModelBuilder.add`` takes them: ``(name, kind, part) -> mm per mm``)."""
+
+    nominal: float
+    terms: dict
+
+
+def seat_factor(directions) -> float:
+    """κ: the share of a body's radial play that each of its meshes gets at once when the meshes'
+    two-flank forces push it. ``directions``: the unit separating directions (from each mate
+    towards this body, in one frame) of its meshes; the body moves along their sum n̂ and mesh k's
+    centre distance grows by κ_k = n̂·u_k of its play; the least of them is returned (0 when they
+    cancel: an idler on the line of its two mates can give neither any play)."""
+    u = np.asarray(directions, dtype=float).reshape(-1, 2)
+    u = u / np.linalg.norm(u, axis=1, keepdims=True)
+    if len(u) == 1:
+        return 1.0
+    s = u.sum(axis=0)
+    n = float(np.linalg.norm(s))
+    if n < 1e-9:
+        return 0.0
+    return max(0.0, float((u @ (s / n)).min()))
+
+
+def seat_credit(plays) -> tuple[float, dict]:
+    """Σ κ · play over ``plays`` [(κ, Play)]: the growth of a mesh's centre distance when its
+    bodies sit where their meshes push them, as (nominal mm, terms)."""
+    nominal, terms = 0.0, {}
+    for k, play in plays:
+        if k == 0.0:
+            continue
+        nominal += k * play.nominal
+        for key, c in play.terms.items():
+            terms[key] = terms.get(key, 0.0) + k * c
+    return nominal, terms
 
 
 @dataclass(frozen=True, eq=False)
