@@ -21,7 +21,7 @@ from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output
 from .export.prints import plan_plates, plates_png, stale_finding, write_plate_files
 from .export.studies import saved_tolerance
-from .mechanisms import REGISTRY, load_design
+from .mechanisms import REGISTRY, autoplay, load_design
 
 __all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
 
@@ -34,6 +34,7 @@ class Loaded:
     mechanism: Mechanism
     spec: object
     kit_dir: Path | None = None
+    auto: dict | None = None  # what `auto` play chose (mechanisms.autoplay), None when the design gives numbers
 
     @property
     def path(self) -> Path:
@@ -87,7 +88,11 @@ def load(target, raw: LoadedDesign | None = None, over: Overrides | None = None)
     got, kit_dir = _raw(target, over) if raw is None else (raw, Path(target) if Path(target).is_dir() else None)
     raw = raw or got
     mech = REGISTRY[raw.design.kind]
-    return Loaded(raw, mech, mech.resolve(raw), kit_dir)
+    auto = None
+    if autoplay.wants_auto(raw):
+        mech.resolve(raw)  # the design's own errors first (exit 2 before any build)
+        raw, auto = autoplay.resolve_auto(raw, mech)
+    return Loaded(raw, mech, mech.resolve(raw), kit_dir, auto)
 
 
 _KITS: dict = {}  # one built kit per process: (design bytes, printer bytes) -> kit

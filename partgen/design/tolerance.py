@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = ["KINDS", "GROUPS", "Feature", "Margin", "Play", "seat_factor", "seat_credit", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
-           "wilson", "summarise", "chunk_sizes"]
+           "wilson", "summarise", "chunk_sizes", "least_play", "PLAY_STEP_MM", "AUTO_SAMPLES"]
 
 KINDS = ("hole", "pin", "tooth", "position", "outline", "height")
 GROUPS = ("joint", "mesh", "clearance")
@@ -81,6 +81,9 @@ class Margin:
     what : which margin of the unit ("radial gap", "backlash", "tip-root D1→M1", "gap", "axial gap").
     nominal : its value in the nominal kit, mm.
     where : the link (or "base") it sits on, for the reader.
+    per_backlash : mm of this margin per mm of ``backlash_per_gear`` (each gear of a mesh thinned
+        by Δ at its reference pitch circle opens the backlash on the operating pitch circle by
+        Δ·(r_w/r)·2 = 2Δ·cos α/cos α_w; 0 for any other margin): what ``least_play`` moves.
     """
 
     unit: str
@@ -88,6 +91,7 @@ class Margin:
     what: str
     nominal: float
     where: str = ""
+    per_backlash: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -340,3 +344,43 @@ def summarise(model: MarginModel, total: ChunkTally, top: int = 12) -> dict:
     return {"samples": n, "accuracy_mm": model.accuracy_mm, "features": len(model.features),
             "margins": len(model.margins), "overall": _prob(total.jams, n), "groups": groups, "units": rows,
             "sensitivity": {"by_kind": by_kind, "by_feature": by_feature}}
+
+
+PLAY_STEP_MM = 0.005  # auto play is a whole number of these (quantised: the same kit on any machine)
+PLAY_MAX_MM = 0.5
+AUTO_SAMPLES = 20_000  # prints the auto choice is made on (seed 0, chunk 0): ~0.1 s for the default chain
+
+
+def least_play(model: MarginModel, start_mm: float, target: float, samples: int = AUTO_SAMPLES, seed: int = 0,
+               step: float = PLAY_STEP_MM, most: float = PLAY_MAX_MM) -> dict:
+    """The least ``backlash_per_gear`` (a whole number of ``step`` from ``step`` to ``most``) with at most
+    ``floor(target · samples)`` jams among ``samples`` fixed prints (seed, chunk 0) of ``model``,
+    which was made from a kit with ``start_mm``; each margin moves by ``per_backlash`` · (value −
+    start). The same draws for every value, so the jams only fall as the play grows: a bisection
+    finds the least value exactly; ties cannot arise (one value per count). When even ``most`` is
+    not enough, ``most`` with ``reached: False``."""
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
+    z = rng.standard_normal((samples, len(model.features)))
+    base = model.nominal[None, :] + z @ (model.coeff * model.sigma[:, None])
+    slope = np.array([m.per_backlash for m in model.margins])
+    allowed = int(math.floor(target * samples + 1e-9))
+    steps = int(round(most / step))
+
+    def jams(k: int) -> int:
+        return int(((base + slope[None, :] * (k * step - start_mm)) < 0.0).any(axis=1).sum())
+    lo, hi = 1, steps  # at least one step: the nominal kit, every gear centred, keeps some backlash
+    if jams(hi) > allowed:
+        k, reached = hi, False
+    else:
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if jams(mid) <= allowed:
+                hi = mid
+            else:
+                lo = mid + 1
+        k, reached = lo, True
+    j = jams(k)
+    lo95, hi95 = wilson(j, samples)
+    return {"backlash_per_gear_mm": round(k * step, 6), "reached": reached, "target": target, "samples": samples,
+            "seed": seed, "jams": j, "probability": j / samples, "ci95": [lo95, hi95],
+            }

@@ -231,7 +231,8 @@ def tolerance_model(kit: Kit, result: Result, accuracy_mm: float, seated: bool =
         terms = {k: 2 * math.tan(aw) * v for k, v in pos.items()}
         terms[_tooth(a)] = -1.0 / math.cos(aw)
         terms[_tooth(bb)] = -1.0 / math.cos(aw)
-        b.add(Margin(unit, "mesh", "backlash", float(row["backlash_mm"]) + 2 * math.tan(aw) * credit, where), terms)
+        b.add(Margin(unit, "mesh", "backlash", float(row["backlash_mm"]) + 2 * math.tan(aw) * credit, where,
+                     2 * math.cos(ga.system.pressure_angle) / math.cos(aw)), terms)
         for key, value in row["tip_clearance_mm"].items():
             terms = dict(pos)
             terms[_tooth(a)] = -0.5

@@ -45,6 +45,7 @@ def tolerance_model(kit: PairKit, result: Result, accuracy_mm: float, seated: bo
         plays.append((1.0 if seated else 0.0, Play(gap, terms)))
     a = s.centre_distance
     aw = operating_pressure_angle(kit)
+    alpha = s.gear1.system.pressure_angle
     da = {("base gear2 post x", "position", "base"): 1.0, ("base gear1 post x", "position", "base"): -1.0}
     credit, credit_terms = seat_credit(plays)
     for key, c in credit_terms.items():
@@ -53,7 +54,7 @@ def tolerance_model(kit: PairKit, result: Result, accuracy_mm: float, seated: bo
     terms = {k: 2 * math.tan(aw) * v for k, v in da.items()}
     terms.update({k: -v / math.cos(aw) for k, v in teeth.items()})
     b.add(Margin("gear1/gear2", "mesh", "backlash", float(result.figures["backlash_mm"]["min"])
-                 + 2 * math.tan(aw) * credit, "base"), terms)
+                 + 2 * math.tan(aw) * credit, "base", 2 * math.cos(alpha) / math.cos(aw)), terms)
     for g, h in (("gear1", "gear2"), ("gear2", "gear1")):
         tip, root = getattr(s, g).tip_radius, getattr(s, h).root_radius
         b.add(Margin("gear1/gear2", "mesh", f"tip-root {g}→{h}", a + credit - tip - root, "base"),
