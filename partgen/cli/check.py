@@ -8,6 +8,7 @@ import sys
 import time
 
 from .common import bounded_int, note, print_json, add_design_options, overrides
+from .tolerance import _unit_float
 
 __all__ = ["add_parser", "run"]
 
@@ -20,6 +21,8 @@ def add_parser(sub) -> None:
     p.add_argument("--json", action="store_true", help="print one JSON object (ok, findings, figures) and nothing else")
     p.add_argument("--plates", default=None, help="folder for the build plates (default: <kit>/plates)")
     p.add_argument("--no-plates", action="store_true", help="lay out the build plates but write nothing")
+    p.add_argument("--max-jam-probability", type=_unit_float, default=None, metavar="P",
+                   help="fail (exit 1) when the quick tolerance study's P(jam) is above P")
     add_design_options(p)
     p.set_defaults(run=run)
 
@@ -47,7 +50,8 @@ def run(args) -> int:
 
     t0 = time.perf_counter()
     loaded, kit, result, folder = pipeline.check(args.target, args.samples, Bar(not args.json), args.plates,
-                                                 not args.no_plates, note, overrides(args))
+                                                 not args.no_plates, note, overrides(args),
+                                                 args.max_jam_probability)
     seconds = time.perf_counter() - t0
     if args.json:
         out = {"ok": result.ok, "kind": loaded.mechanism.kind, "design": loaded.name, "config": str(loaded.path),
@@ -55,5 +59,10 @@ def run(args) -> int:
                "plates_dir": str(folder) if folder else None, "seconds": round(seconds, 3)}
         print_json(out)
     else:
-        print(loaded.mechanism.check_text(loaded.spec, result, folder, seconds))
+        text = loaded.mechanism.check_text(loaded.spec, result, folder, seconds)
+        print(text)
+        if "P(jam)" not in text:  # a mechanism's text that does not list every finding
+            for f in result.findings:
+                if f.check == "tolerance":
+                    print(f"  {dict(fail='FAIL', warn='WARN', info='ok').get(f.severity)}  tolerance: {f.message}")
     return 0 if result.ok else 1

@@ -364,7 +364,7 @@ def least_play(model: MarginModel, start_mm: float, target: float, samples: int 
     base = model.nominal[None, :] + z @ (model.coeff * model.sigma[:, None])
     slope = np.array([m.per_backlash for m in model.margins])
     allowed = int(math.floor(target * samples + 1e-9))
-    steps = int(round(most / step))
+    steps = max(1, int(round(most / step)))
 
     def jams(k: int) -> int:
         return int(((base + slope[None, :] * (k * step - start_mm)) < 0.0).any(axis=1).sum())

@@ -17,7 +17,7 @@ from dataclasses import replace
 from ..config.loader import LoadedDesign
 from ..config.schema import AUTO_PLAY_START_MM
 from ..core.protocol import tolerance_hook
-from ..design.tolerance import least_play
+from ..design.tolerance import PLAY_STEP_MM, least_play
 from ..errors import ConfigError, DesignError
 
 __all__ = ["KEY", "wants_auto", "resolve_auto"]
@@ -36,6 +36,15 @@ def _with(raw: LoadedDesign, value: float) -> LoadedDesign:
     data = copy.deepcopy(raw.data if raw.data is not None else raw.document())
     data[KEY[0]][KEY[1]] = value
     return replace(raw, data=data, design=type(raw.design).model_validate(data))
+
+
+def _builds(raw: LoadedDesign, mech, value: float) -> str | None:
+    """None when the design resolves with ``value``; else what stops it."""
+    try:
+        mech.resolve(_with(raw, round(value, 6)))
+    except ConfigError as e:
+        return f"{e.key_path}: {e.problem}" if getattr(e, "key_path", None) else str(e)
+    return None
 
 
 def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
@@ -57,9 +66,24 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     model = hook(spec, kit, result, kit.printer.xy_accuracy)
     target = raw.design.tolerance.max_jam_probability
     got = least_play(model, AUTO_PLAY_START_MM, target)
+    limit = None
+    if _builds(raw, mech, got["backlash_per_gear_mm"]) is not None:
+        # thinner teeth break a rule the design is held to (tip width, ...): the most that builds
+        lo, hi = 1, int(round(got["backlash_per_gear_mm"] / PLAY_STEP_MM)) - 1
+        problem = _builds(raw, mech, got["backlash_per_gear_mm"])
+        while lo < hi:
+            mid = (lo + hi + 1) // 2
+            if _builds(raw, mech, mid * PLAY_STEP_MM) is None:
+                lo = mid
+            else:
+                hi = mid - 1
+        if _builds(raw, mech, lo * PLAY_STEP_MM) is not None:
+            raise ConfigError(raw.path, ".".join(KEY), f"auto: no backlash from {PLAY_STEP_MM} mm builds: {problem}")
+        limit = {"needed_mm": got["backlash_per_gear_mm"], "problem": problem}
+        got = least_play(model, AUTO_PLAY_START_MM, target, most=round(lo * PLAY_STEP_MM, 6))
     value = got["backlash_per_gear_mm"]
     alloc = {"key": ".".join(KEY), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
-             "meshes": sum(m.what == "backlash" for m in model.margins)}
+             "meshes": sum(m.what == "backlash" for m in model.margins), "limited_by": limit}
     out = (_with(raw, value), alloc)
     _DONE[key] = out
     return out
