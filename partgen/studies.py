@@ -174,7 +174,7 @@ def sample(client, model: MarginModel, samples: int, seed: int, claim=None, resu
 def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int = 0, workers: int | None = None,
               scheduler: str | None = None, dest=None, resume: bool = False, check_samples: int | None = None,
               over=None, progress: bool = False, processes: bool | None = None, write: bool = True,
-              chunk: int | None = None) -> ToleranceRun:
+              chunk: int | None = None, exact: int | None = None) -> ToleranceRun:
     """The tolerance study of a design or kit folder: see the module's docstring. ``dest``: the
     folder for chunks.jsonl and result.json (default ``<kit>/tolerance`` or
     ``out/<name>/tolerance``); ``write=False``: nothing written."""
@@ -187,6 +187,10 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
     loaded = pipeline.load(target, raw)
     if tolerance_hook(loaded.mechanism) is None:
         nominal_model(loaded, accuracy_mm)  # raises the clear error
+    if exact is not None and (exact <= 0 or getattr(loaded.mechanism, EXACT_HOOK, None) is None):
+        raise OptionError("--exact", str(exact), "must be at least 1 print" if exact <= 0 else
+                          f"a {loaded.mechanism.kind} design has no exact Monte Carlo yet (kind: "
+                          f"{', '.join(k for k, m in _registry().items() if getattr(m, EXACT_HOOK, None))})")
     claim = None
     if write:
         claim = pipeline.output_claim(raw, Path(dest) if dest else (kit_dir / "tolerance" if kit_dir else None),
@@ -202,6 +206,9 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
         header = {"study": "tolerance", "design": raw.digest(), "seed": int(seed)}
         total, info = sample(client, model, samples, seed, claim, resume, header, progress, chunk)
         worst_total, _ = sample(client, worst, samples, seed, None, False, None, False, chunk)
+        exact_result = None
+        if exact:
+            exact_result = exact_study(client, loaded, kit, nominal, model, exact, seed, progress)
     summary = summarise(model, total)
     summary["seat"] = "gears pushed apart in their bores by their meshes (docs/tolerance.md)"
     summary["worst_case"] = {"seat": "every gear centred on its post: no bore play credited",
@@ -214,12 +221,56 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                     "workers": info["workers"], "seconds": {"cluster_wait": round(t_cluster, 3),
                                                             "nominal_check": round(check_s, 3),
                                                             "samples": info["seconds"]}})
+    if exact_result is not None:
+        lin = summary["overall"]["ci95"]
+        ex = exact_result["ci95"]
+        exact_result["agrees"] = bool(ex[0] <= lin[1] and lin[0] <= ex[1])  # the 95 % intervals overlap
+        summary["exact"] = exact_result
     if kit_dir is not None:  # the study is of the design the folder's design.yaml builds: say if its STLs differ
         summary["kit_stale_files"] = stale_files(pipeline.make_kit(loaded), kit_dir)
     out = info["dest"]
     if out is not None:
         _write_atomic(out / "result.json", json.dumps(_json_safe(summary), indent=1))
     return ToleranceRun(loaded, summary, out)
+
+
+EXACT_HOOK = "tolerance_exact"
+
+
+def _registry():
+    from .mechanisms import REGISTRY
+
+    return REGISTRY
+
+
+def exact_study(client, loaded, kit, nominal, model, prints: int, seed: int, progress: bool = False) -> dict:
+    """The exact Monte Carlo: ``prints`` perturbed prints of the kit's real geometry, one task
+    each on ``client``'s workers (the mechanism's ``tolerance_exact`` hook: the task function and
+    what it shares), gears seated as the linear model's (docs/tolerance.md). Print i's deviations
+    come from ``SeedSequence(seed, spawn_key=(1, i))``: the result does not depend on the workers."""
+    from .design.tolerance import wilson
+
+    fn, shared = getattr(loaded.mechanism, EXACT_HOOK)(loaded.spec, kit, nominal, model)
+    got: dict[int, dict] = {}
+    counter = C.Counter("exact prints", prints, progress)
+
+    def keep(key, row):
+        got[key] = row
+        counter()
+    workers = len(client.scheduler_info().get("workers", {}))
+    t0 = time.perf_counter()
+    C.run(client, fn, shared, [(i, (int(seed), i)) for i in range(prints)], keep, None, "exact")
+    wall = time.perf_counter() - t0
+    rows = [got[i] for i in range(prints)]
+    jams = sum(r["jam"] for r in rows)
+    why: dict[str, int] = {}
+    for r in rows:
+        if r["why"]:
+            why[r["why"]] = why.get(r["why"], 0) + 1
+    lo, hi = wilson(jams, prints)
+    return {"prints": prints, "jams": jams, "probability": jams / prints, "ci95": [lo, hi], "why": why,
+            "workers": workers, "seconds": round(wall, 3),
+            "seconds_per_print": round(sum(r["seconds"] for r in rows) / prints, 4)}
 
 
 def _json_safe(v):

@@ -358,7 +358,8 @@ def least_play(model: MarginModel, start_mm: float, target: float, samples: int 
     which was made from a kit with ``start_mm``; each margin moves by ``per_backlash`` · (value −
     start). The same draws for every value, so the jams only fall as the play grows: a bisection
     finds the least value exactly; ties cannot arise (one value per count). When even ``most`` is
-    not enough, ``most`` with ``reached: False``."""
+    not enough (other margins jam more often than the target), the least value whose jams are
+    those of ``most``, with ``reached: False``."""
     rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
     z = rng.standard_normal((samples, len(model.features)))
     base = model.nominal[None, :] + z @ (model.coeff * model.sigma[:, None])
@@ -369,16 +370,17 @@ def least_play(model: MarginModel, start_mm: float, target: float, samples: int 
     def jams(k: int) -> int:
         return int(((base + slope[None, :] * (k * step - start_mm)) < 0.0).any(axis=1).sum())
     lo, hi = 1, steps  # at least one step: the nominal kit, every gear centred, keeps some backlash
-    if jams(hi) > allowed:
-        k, reached = hi, False
-    else:
-        while lo < hi:
-            mid = (lo + hi) // 2
-            if jams(mid) <= allowed:
-                hi = mid
-            else:
-                lo = mid + 1
-        k, reached = lo, True
+    floor = jams(hi)
+    reached = floor <= allowed
+    if not reached:  # other margins (fits, clearances) jam more than the target: the least play that
+        allowed = floor  # reaches what the most play reaches (more play would buy nothing)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if jams(mid) <= allowed:
+            hi = mid
+        else:
+            lo = mid + 1
+    k = lo
     j = jams(k)
     lo95, hi95 = wilson(j, samples)
     return {"backlash_per_gear_mm": round(k * step, 6), "reached": reached, "target": target, "samples": samples,

@@ -160,6 +160,13 @@ class GearPair:
 
         return tolerance_model(kit, result, accuracy_mm, seated)
 
+    def tolerance_exact(self, spec: PairSpec, kit: PairKit, result: Result, model, seated: bool = True):
+        """(task function, shared data) of the exact Monte Carlo: ``fn(shared, seed, index)`` makes
+        print ``index`` of the real geometry and says whether it jams (``exact``)."""
+        from .exact import exact_print, exact_shared
+
+        return exact_print, exact_shared(kit, result, model, seated)
+
     def trace(self, spec: PairSpec, kit: PairKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """The transmission error over one output revolution from the printed outlines: how far the
         driven gear lags its nominal angle with gear 1's flank against it (rad at the output, and
