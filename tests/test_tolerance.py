@@ -46,15 +46,15 @@ def test_margins_come_from_the_nominal_check(nominal):
     running = [c for c in kit.contacts if c.kind == "running"]
     joints = [x for x in m.margins if x.group == "joint"]
     assert len(joints) == len(running) == 22
-    assert all(abs(x.nominal - 0.1) < 0.02 for x in joints)  # 0.2 mm diametral, measured in the section
+    assert all(abs(x.nominal - 0.15) < 0.02 for x in joints)  # 0.3 mm diametral, measured in the section
     measured = {" / ".join(r["pair"]).replace(" / ", "/"): r["backlash_mm"] for r in result.figures["meshes"]}
     centred = model_of(nominal, "butterfly", FORTUS, seated=False)
     assert {x.unit: x.nominal for x in centred.margins if x.what == "backlash"} == measured
     # seated: each mesh's backlash grows by the play its bodies give it (never shrinks); the drive
-    # gear and the last link have one mesh each, so drive/G1 gets all of the drive's 0.1 mm radial
+    # gear and the last link have one mesh each, so drive/G1 gets all of the drive's 0.15 mm radial
     seated = {x.unit: x.nominal for x in m.margins if x.what == "backlash"}
     assert all(seated[u] >= measured[u] - 1e-12 for u in measured)
-    assert 2 * np.tan(np.radians(20)) * 0.09 < seated["G1/drive"] - measured["G1/drive"] < 2 * np.tan(np.radians(25)) * 0.11
+    assert 2 * np.tan(np.radians(20)) * 0.14 < seated["G1/drive"] - measured["G1/drive"] < 2 * np.tan(np.radians(25)) * 0.16
     # Eq 12 on link 10 of the default: S − r_tip(D10) − r_tip(G11) = the 1.5 mm tip gap or more
     eq12 = next(x for x in m.margins if x.unit == "D10–G11")
     assert eq12.nominal >= 1.5 - 1e-9

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import copy
 from dataclasses import replace
+from pathlib import Path
 
 from ..config.loader import LoadedDesign
 from ..config.schema import AUTO_PLAY_START_MM
@@ -50,9 +51,10 @@ def _builds(raw: LoadedDesign, mech, value: float) -> str | None:
 def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     """(the design with the chosen number, the allocation: value, P(jam) it reaches, its interval,
     the target, the samples)."""
-    key = raw.digest()
+    key = (str(Path(raw.path).resolve()), raw.digest())  # the path too: a design may name files beside it
     if key in _DONE:
-        return _DONE[key]
+        value, alloc = _DONE[key]
+        return _with(raw, value), alloc
     hook = tolerance_hook(mech)
     if hook is None:
         raise ConfigError(raw.path, ".".join(KEY), f"auto needs a tolerance model: a {mech.kind} design has none yet")
@@ -84,6 +86,5 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     value = got["backlash_per_gear_mm"]
     alloc = {"key": ".".join(KEY), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
              "meshes": sum(m.what == "backlash" for m in model.margins), "limited_by": limit}
-    out = (_with(raw, value), alloc)
-    _DONE[key] = out
-    return out
+    _DONE[key] = (value, alloc)
+    return _with(raw, value), alloc
