@@ -235,6 +235,12 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
 
 
 EXACT_HOOK = "tolerance_exact"
+EXACT_PER_TASK = 5  # prints a task makes (a print is ~20-60 ms: the scheduler's ~3-5 ms a task is then ~3 %)
+
+
+def _exact_batch(job: dict, seed: int, first: int, n: int) -> list[dict]:
+    """Prints first .. first + n - 1 (each one's deviations depend on the seed and its index only)."""
+    return [job["fn"](job["shared"], seed, i) for i in range(first, first + n)]
 
 
 def _registry():
@@ -254,12 +260,15 @@ def exact_study(client, loaded, kit, nominal, model, prints: int, seed: int, pro
     got: dict[int, dict] = {}
     counter = C.Counter("exact prints", prints, progress)
 
-    def keep(key, row):
-        got[key] = row
-        counter()
+    def keep(key, rows):
+        for row in rows:
+            got[row["index"]] = row
+        counter(len(rows))
     workers = len(client.scheduler_info().get("workers", {}))
     t0 = time.perf_counter()
-    C.run(client, fn, shared, [(i, (int(seed), i)) for i in range(prints)], keep, None, "exact")
+    tasks = [(k, (int(seed), first, min(EXACT_PER_TASK, prints - first)))
+             for k, first in enumerate(range(0, prints, EXACT_PER_TASK))]
+    C.run(client, _exact_batch, {"fn": fn, "shared": shared}, tasks, keep, None, "exact")
     wall = time.perf_counter() - t0
     rows = [got[i] for i in range(prints)]
     jams = sum(r["jam"] for r in rows)
