@@ -14,15 +14,16 @@ from typing import NamedTuple
 
 from .config.loader import LoadedDesign
 from .config.overrides import Overrides, parse_set
-from .core.findings import Result
-from .core.protocol import Kit, Mechanism, Trace
+from .core.findings import Finding, Result
+from .core.protocol import Kit, Mechanism, Trace, tolerance_hook
+from .design.tolerance import run_chunk, summarise
 from .errors import ConfigError, DesignError, OptionError
 from .export.gltf import motion_of
 from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output, is_partgen_kit, read_marker
 from .export.prints import plan_plates, plates_png, printed_groups, stale_finding, write_plate_files
 from .export.studies import saved_tolerance
-from .mechanisms import REGISTRY, load_design
+from .mechanisms import REGISTRY, autoplay, load_design
 
 __all__ = ["Loaded", "load", "make_kit", "build", "check", "trace", "report", "overrides"]
 
@@ -35,6 +36,7 @@ class Loaded:
     mechanism: Mechanism
     spec: object
     kit_dir: Path | None = None
+    auto: dict | None = None  # what `auto` play chose (mechanisms.autoplay), None when the design gives numbers
 
     @property
     def path(self) -> Path:
@@ -88,7 +90,11 @@ def load(target, raw: LoadedDesign | None = None, over: Overrides | None = None)
     got, kit_dir = _raw(target, over) if raw is None else (raw, Path(target) if Path(target).is_dir() else None)
     raw = raw or got
     mech = REGISTRY[raw.design.kind]
-    return Loaded(raw, mech, mech.resolve(raw), kit_dir)
+    auto = None
+    if autoplay.wants_auto(raw):
+        mech.resolve(raw)  # the design's own errors first (exit 2 before any build)
+        raw, auto = autoplay.resolve_auto(raw, mech)
+    return Loaded(raw, mech, mech.resolve(raw), kit_dir, auto)
 
 
 _KITS: dict = {}  # one built kit per process: (design bytes, printer bytes) -> kit
@@ -165,15 +171,50 @@ def build(path, dest=None, progress=None, notify=None, over: Overrides | None = 
     design = mech.design_summary(spec, kit)  # every manifest says its kind, and what it prints on and in what
     design = {**design, **{k: v for k, v in (("kind", mech.kind), ("config", loaded.path.name),
                                              ("printer", kit.printer.name), ("material", kit.material)) if k not in design}}
-    man = write_kit(kit, claim, design, mech.kit_files(spec, kit, raw), progress=progress,
+    man = write_kit(kit, claim, design, mech.kit_files(spec, kit, loaded.raw), progress=progress,  # auto play pinned
                     motion=motion_of(mech, spec, kit), colours=getattr(mech, "role_colours", None))
     return Built(loaded, kit, man, claim.dest)
 
 
+QUICK_SAMPLES = 20_000  # prints of check's quick linear study (seed 0): ~0.1 s of numpy for the default chain
+
+
+def jam_finding(loaded: Loaded, kit: Kit, result: Result, limit: float | None = None) -> Finding | None:
+    """The quick linear tolerance study of a checked kit (gears seated by their meshes; 20,000
+    prints on the printer's accuracy, seed 0) as a finding, and ``result.figures["jam"]``: info at
+    or under the design's ``tolerance.max_jam_probability``, a warning above it, a failure above
+    ``limit`` (--max-jam-probability). None for a kind with no tolerance model."""
+    hook = tolerance_hook(loaded.mechanism)
+    if hook is None:
+        return None
+    acc = kit.printer.xy_accuracy
+    model = hook(loaded.spec, kit, result, acc)
+    s = summarise(model, run_chunk(model, 0, 0, QUICK_SAMPLES))
+    worst = hook(loaded.spec, kit, result, acc, seated=False)
+    sw = summarise(worst, run_chunk(worst, 0, 0, QUICK_SAMPLES))
+    target = getattr(getattr(loaded.raw.design, "tolerance", None), "max_jam_probability", None)
+    p, (lo, hi) = s["overall"]["probability"], s["overall"]["ci95"]
+    top = [u["unit"] for u in s["units"] if u["jams"]][:3]
+    result.figures["jam"] = {"probability": p, "ci95": [lo, hi], "samples": QUICK_SAMPLES, "accuracy_mm": acc,
+                             "target": target, "worst_case": sw["overall"]["probability"], "worst_units": top}
+    severity = "fail" if limit is not None and p > limit else ("warn" if target is not None and p > target else "info")
+    msg = (f"P(jam) {100 * p:.2f} % (95 % CI {100 * lo:.2f}–{100 * hi:.2f} %; linear study of {QUICK_SAMPLES:,} "
+           f"prints at ±{acc:g} mm, gears seated by their meshes; worst case, every gear centred: "
+           f"{100 * sw['overall']['probability']:.1f} %)"
+           + (f"; above the design's target {100 * target:g} %" if target is not None and p > target else "")
+           + (f"; above --max-jam-probability {limit:g}" if severity == "fail" else "")
+           + (f"; most at {', '.join(top)}" if top else "")
+           + ("" if severity == "info" else " (`partgen tolerance` for the whole study; "
+              "gears.backlash_per_gear_mm: auto chooses the play)"))
+    return Finding("tolerance", severity, msg, value=p, unit="probability",
+                   key="tolerance.max_jam_probability" if severity == "warn" else "")
+
+
 def check(target, samples: int | None = None, progress=None, plates_dir=None, write_plates: bool = True,
-          notify=None, over: Overrides | None = None) -> Checked:
+          notify=None, over: Overrides | None = None, max_jam: float | None = None) -> Checked:
     """Check a design (CONFIG) or a built kit (KITDIR: its STLs compared byte for byte with what its
-    design.yaml builds). Lays the parts out on build plates and writes a 3MF per plate and a picture."""
+    design.yaml builds). Lays the parts out on build plates and writes a 3MF per plate and a picture.
+    Adds the quick tolerance study's P(jam) (``jam_finding``; a failure above ``max_jam``)."""
     raw, kit_dir = _raw(target, over)
     claim = None
     if write_plates:
@@ -182,6 +223,9 @@ def check(target, samples: int | None = None, progress=None, plates_dir=None, wr
     loaded = load(target, raw)
     kit = make_kit(loaded)
     result = loaded.mechanism.check(loaded.spec, kit, samples, progress)
+    jam = jam_finding(loaded, kit, result, max_jam)
+    if jam is not None:
+        result.add(jam)
     _add_stale(result, kit, kit_dir)
     lay, meshes, picture = plan_plates(kit, loaded.mechanism.plate_margin(loaded.spec), result)
     if lay is not None and claim is not None:

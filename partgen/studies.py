@@ -61,14 +61,17 @@ def modelled_kinds() -> list[str]:
     return [k for k, m in REGISTRY.items() if tolerance_hook(m) is not None]
 
 
-def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None, progress: bool = False):
-    """(model, nominal check result, seconds of the check): the kit built once, checked once
-    (``progress``: a progress line over the check's crank angles, on a terminal)."""
+def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None, progress: bool = False,
+                  kit=None, seated: bool = True):
+    """(model, nominal check result, seconds of the check): the kit built once (or ``kit``), checked
+    once (``progress``: a progress line over the check's crank angles, on a terminal). ``seated``:
+    the gears sit where their meshes push them in their bores (docs/tolerance.md); ``worst_model``
+    gives the same check's model with every gear centred."""
     hook = tolerance_hook(loaded.mechanism)
     if hook is None:
         raise ConfigError(loaded.path, "kind", f"a {loaded.mechanism.kind} design offers no tolerance study yet "
                           f"(`partgen tolerance` runs on kind: {', '.join(modelled_kinds())})")
-    kit = pipeline.make_kit(loaded)
+    kit = kit if kit is not None else pipeline.make_kit(loaded)
     t0 = time.perf_counter()
     bar = C.Counter("nominal check, crank angles", 1, progress)
 
@@ -78,7 +81,14 @@ def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None =
     result = loaded.mechanism.check(loaded.spec, kit, check_samples, angles if bar.enabled else None)
     seconds = time.perf_counter() - t0
     acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
-    return biased_model(hook(loaded.spec, kit, result, acc), kit), result, seconds
+    return biased_model(hook(loaded.spec, kit, result, acc, seated=seated), kit), result, seconds
+
+
+def worst_model(loaded, kit, result, accuracy_mm: float | None):
+    """The model of the same nominal check with every gear centred on its post (no bore play
+    credited): the worst case reported beside the headline figure."""
+    acc = kit.printer.xy_accuracy if accuracy_mm is None else accuracy_mm
+    return biased_model(tolerance_hook(loaded.mechanism)(loaded.spec, kit, result, acc, seated=False), kit)
 
 
 def _write_atomic(path: Path, text: str) -> None:
@@ -170,7 +180,7 @@ def sample(client, model: MarginModel, samples: int, seed: int, claim=None, resu
 def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int = 0, workers: int | None = None,
               scheduler: str | None = None, dest=None, resume: bool = False, check_samples: int | None = None,
               over=None, progress: bool = False, processes: bool | None = None, write: bool = True,
-              chunk: int | None = None) -> ToleranceRun:
+              chunk: int | None = None, exact: int | None = None) -> ToleranceRun:
     """The tolerance study of a design or kit folder: see the module's docstring. ``dest``: the
     folder for chunks.jsonl and result.json (default ``<kit>/tolerance`` or
     ``out/<name>/tolerance``); ``write=False``: nothing written."""
@@ -183,19 +193,32 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
     loaded = pipeline.load(target, raw)
     if tolerance_hook(loaded.mechanism) is None:
         nominal_model(loaded, accuracy_mm)  # raises the clear error
+    if exact is not None and (exact <= 0 or getattr(loaded.mechanism, EXACT_HOOK, None) is None):
+        raise OptionError("--exact", str(exact), "must be at least 1 print" if exact <= 0 else
+                          f"a {loaded.mechanism.kind} design has no exact Monte Carlo yet (kind: "
+                          f"{', '.join(k for k, m in _registry().items() if getattr(m, EXACT_HOOK, None))})")
     claim = None
     if write:
         claim = pipeline.output_claim(raw, Path(dest) if dest else None, "tolerance", "tolerance", "-o",
                                       kit_dir=kit_dir, over=over)
     # an unreachable scheduler: exit 2, nothing written; a local cluster starts beside the build and check
     with C.starting(workers, scheduler, processes) as get_client:
-        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples, progress)
+        kit = pipeline.make_kit(loaded)
+        model, nominal, check_s = nominal_model(loaded, accuracy_mm, check_samples, progress, kit=kit)
+        worst = worst_model(loaded, kit, nominal, accuracy_mm)
         t1 = time.perf_counter()
         client = get_client()
         t_cluster = time.perf_counter() - t1  # the wait for the cluster after the nominal check
         header = {"study": "tolerance", "design": raw.digest(), "seed": int(seed)}
         total, info = sample(client, model, samples, seed, claim, resume, header, progress, chunk)
+        worst_total, _ = sample(client, worst, samples, seed, None, False, None, False, chunk)
+        exact_result = None
+        if exact:
+            exact_result = exact_study(client, loaded, kit, nominal, model, exact, seed, progress)
     summary = summarise(model, total)
+    summary["seat"] = "gears pushed apart in their bores by their meshes (docs/tolerance.md)"
+    summary["worst_case"] = {"seat": "every gear centred on its post: no bore play credited",
+                             "model_digest": worst.digest(), **summarise(worst, worst_total)["overall"]}
     summary.update({"design": raw.design.name, "kind": loaded.mechanism.kind, "config": str(loaded.path),
                     "design_digest": header["design"], "model_digest": model.digest(), "seed": int(seed),
                     "chunk": int(chunk), "chunks": info["chunks"], "resumed_chunks": info["resumed_chunks"],
@@ -205,12 +228,65 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
                     "workers": info["workers"], "seconds": {"cluster_wait": round(t_cluster, 3),
                                                             "nominal_check": round(check_s, 3),
                                                             "samples": info["seconds"]}})
+    if exact_result is not None:
+        lin = summary["overall"]["ci95"]
+        ex = exact_result["ci95"]
+        exact_result["agrees"] = bool(ex[0] <= lin[1] and lin[0] <= ex[1])  # the 95 % intervals overlap
+        summary["exact"] = exact_result
     if kit_dir is not None:  # the study is of the design the folder's design.yaml builds: say if its STLs differ
         summary["kit_stale_files"] = stale_files(pipeline.make_kit(loaded), kit_dir)
     out = info["dest"]
     if out is not None:
         _write_atomic(out / "result.json", json.dumps(_json_safe(summary), indent=1))
     return ToleranceRun(loaded, summary, out)
+
+
+EXACT_HOOK = "tolerance_exact"
+EXACT_PER_TASK = 5  # prints a task makes (a print is ~20-60 ms: the scheduler's ~3-5 ms a task is then ~3 %)
+
+
+def _exact_batch(job: dict, seed: int, first: int, n: int) -> list[dict]:
+    """Prints first .. first + n - 1 (each one's deviations depend on the seed and its index only)."""
+    return [job["fn"](job["shared"], seed, i) for i in range(first, first + n)]
+
+
+def _registry():
+    from .mechanisms import REGISTRY
+
+    return REGISTRY
+
+
+def exact_study(client, loaded, kit, nominal, model, prints: int, seed: int, progress: bool = False) -> dict:
+    """The exact Monte Carlo: ``prints`` perturbed prints of the kit's real geometry, one task
+    each on ``client``'s workers (the mechanism's ``tolerance_exact`` hook: the task function and
+    what it shares), gears seated as the linear model's (docs/tolerance.md). Print i's deviations
+    come from ``SeedSequence(seed, spawn_key=(1, i))``: the result does not depend on the workers."""
+    from .design.tolerance import wilson
+
+    fn, shared = getattr(loaded.mechanism, EXACT_HOOK)(loaded.spec, kit, nominal, model)
+    got: dict[int, dict] = {}
+    counter = C.Counter("exact prints", prints, progress)
+
+    def keep(key, rows):
+        for row in rows:
+            got[row["index"]] = row
+        counter(len(rows))
+    workers = len(client.scheduler_info().get("workers", {}))
+    t0 = time.perf_counter()
+    tasks = [(k, (int(seed), first, min(EXACT_PER_TASK, prints - first)))
+             for k, first in enumerate(range(0, prints, EXACT_PER_TASK))]
+    C.run(client, _exact_batch, {"fn": fn, "shared": shared}, tasks, keep, None, "exact")
+    wall = time.perf_counter() - t0
+    rows = [got[i] for i in range(prints)]
+    jams = sum(r["jam"] for r in rows)
+    why: dict[str, int] = {}
+    for r in rows:
+        if r["why"]:
+            why[r["why"]] = why.get(r["why"], 0) + 1
+    lo, hi = wilson(jams, prints)
+    return {"prints": prints, "jams": jams, "probability": jams / prints, "ci95": [lo, hi], "why": why,
+            "workers": workers, "seconds": round(wall, 3),
+            "seconds_per_print": round(sum(r["seconds"] for r in rows) / prints, 4)}
 
 
 def _json_safe(v):

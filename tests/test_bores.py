@@ -105,13 +105,13 @@ def test_every_bore_of_the_chain_is_open_and_fits_its_pin_closely(kit_of):
     assert {"G1", "drive", "D1", "M1", "B1", "B11", "base", "crank", "pen_holder"} <= set(named)
     assert named["base"] == {"drive axle", "leg1 peg", "leg2 peg", "leg3 peg", "leg4 peg"}
     assert "pen spigot" in named["B11"] and named["pen_holder"] == {"pen"}
-    # each declared bore is the bore: a pin 0.3 mm wider (diametral) meets its wall
+    # each declared bore is the bore: a pin 0.4 mm wider (diametral; the running fits are 0.3) meets its wall
     seen = set()
     for p in kit.parts:
         for b in p.bores:
             if (id(p.solid), b.name) not in seen:
                 seen.add((id(p.solid), b.name))
-                assert bore_blocked(p.solid, replace(b, diameter_mm=b.diameter_mm + 0.3)) > 0.01, (p.name, b.name)
+                assert bore_blocked(p.solid, replace(b, diameter_mm=b.diameter_mm + 0.4)) > 0.01, (p.name, b.name)
 
 
 def test_a_part_lies_on_the_face_that_needs_least_support():

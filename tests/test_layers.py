@@ -21,7 +21,7 @@ ALLOWED = {
     "export": {"core", "design", "geometry", "errors", "__init__"},  # __init__: the version string
     "testing": {"core", "design", "geometry", "export", "errors"},
     "mechanisms": {"core", "design", "config", "geometry", "checks", "export", "errors"},
-    "pipeline": {"core", "config", "export", "mechanisms", "errors"},
+    "pipeline": {"core", "config", "design", "export", "mechanisms", "errors"},  # design: check's quick tolerance study
     "cluster": {"errors"},
     "studies": {"core", "config", "design", "export", "mechanisms", "pipeline", "cluster", "errors"},
     "calibration": {"core", "config", "design", "geometry", "export", "errors"},

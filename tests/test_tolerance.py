@@ -30,9 +30,9 @@ def nominal(kit_of):
     return out
 
 
-def model_of(nominal, name, accuracy):
+def model_of(nominal, name, accuracy, seated=True):
     loaded, kit, result = nominal[name]
-    return loaded.mechanism.tolerance_model(loaded.spec, kit, result, accuracy)
+    return loaded.mechanism.tolerance_model(loaded.spec, kit, result, accuracy, seated=seated)
 
 
 def run_local(model, samples, seed=0, chunk=500):
@@ -46,9 +46,15 @@ def test_margins_come_from_the_nominal_check(nominal):
     running = [c for c in kit.contacts if c.kind == "running"]
     joints = [x for x in m.margins if x.group == "joint"]
     assert len(joints) == len(running) == 22
-    assert all(abs(x.nominal - 0.1) < 0.02 for x in joints)  # 0.2 mm diametral, measured in the section
-    backlash = {x.unit: x.nominal for x in m.margins if x.what == "backlash"}
-    assert backlash == {" / ".join(r["pair"]).replace(" / ", "/"): r["backlash_mm"] for r in result.figures["meshes"]}
+    assert all(abs(x.nominal - 0.15) < 0.02 for x in joints)  # 0.3 mm diametral, measured in the section
+    measured = {" / ".join(r["pair"]).replace(" / ", "/"): r["backlash_mm"] for r in result.figures["meshes"]}
+    centred = model_of(nominal, "butterfly", FORTUS, seated=False)
+    assert {x.unit: x.nominal for x in centred.margins if x.what == "backlash"} == measured
+    # seated: each mesh's backlash grows by the play its bodies give it (never shrinks); the drive
+    # gear and the last link have one mesh each, so drive/G1 gets all of the drive's 0.15 mm radial
+    seated = {x.unit: x.nominal for x in m.margins if x.what == "backlash"}
+    assert all(seated[u] >= measured[u] - 1e-12 for u in measured)
+    assert 2 * np.tan(np.radians(20)) * 0.14 < seated["G1/drive"] - measured["G1/drive"] < 2 * np.tan(np.radians(25)) * 0.16
     # Eq 12 on link 10 of the default: S − r_tip(D10) − r_tip(G11) = the 1.5 mm tip gap or more
     eq12 = next(x for x in m.margins if x.unit == "D10–G11")
     assert eq12.nominal >= 1.5 - 1e-9
@@ -193,8 +199,8 @@ def test_the_gear_pair_jams_at_its_mesh_as_the_normal_tail_says(kit_of):
     result = loaded.mechanism.check(loaded.spec, kit, 24, None)
     s = loaded.spec
 
-    def model(acc):
-        return loaded.mechanism.tolerance_model(s, kit, result, acc)
+    def model(acc, seated=False):
+        return loaded.mechanism.tolerance_model(s, kit, result, acc, seated=seated)
 
     m = model(FORTUS)
     mesh = next(x for x in m.margins if x.what == "backlash")
@@ -211,6 +217,22 @@ def test_the_gear_pair_jams_at_its_mesh_as_the_normal_tail_says(kit_of):
     assert run_local(model(0.0), 2000)["overall"]["jams"] == 0
     loose = run_local(model(0.6), 4000)  # ±0.6 mm: a 0.2 mm radial gap has σ 0.14 mm, ~8 % grip their post
     assert all(u["jams"] > 0 for u in loose["units"] if u["group"] == "joint")
+    # seated (the default): the mesh pushes both gears apart by their printed radial play, so the
+    # centre distance grows by gap₁ + gap₂ (each 0.2 mm ± half its bore's and post's deviations)
+    acc = 0.3
+    seated = loaded.mechanism.tolerance_model(s, kit, result, acc)
+    mesh = next(x for x in seated.margins if x.what == "backlash")
+    gap = result.figures["radial_gap_mm"]
+    assert mesh.nominal == pytest.approx(result.figures["backlash_mm"]["min"] + 2 * math.tan(aw) * 2 * gap, abs=1e-12)
+    sd = acc / 3
+    sigma = math.sqrt(2 * (sd / math.cos(aw)) ** 2 + 2 * (2 * math.tan(aw) * sd / math.sqrt(2)) ** 2
+                      + 4 * (2 * math.tan(aw) * 0.5 * sd) ** 2)
+    expect = 0.5 * math.erfc(mesh.nominal / sigma / math.sqrt(2))
+    r = run_local(seated, 40_000, seed=5)
+    got = next(u for u in r["units"] if u["unit"] == "gear1/gear2")
+    assert got["ci95"][0] <= expect <= got["ci95"][1]
+    centred = run_local(model(acc), 40_000, seed=5)
+    assert got["probability"] < centred["units"][0]["probability"] / 5  # 0.3 % against 11.4 %
 
 
 def test_local_worker_processes_keep_glibc_off_fresh_mmaps_per_task(recwarn):

@@ -34,6 +34,20 @@ class Progress:
             print("\r" + " " * 40 + "\r", end="", file=sys.stderr, flush=True)
 
 
+def auto_text(a: dict) -> str:
+    """What ``auto`` play chose, and the P(jam) it reaches (mechanisms.autoplay)."""
+    p, (lo, hi) = a["probability"], a["ci95"]
+    line = (f"auto play: {a['key']} = {a['backlash_per_gear_mm']:g} mm (each of {a['meshes']} meshes) — P(jam) "
+            f"{100 * p:.2f} % (95 % CI {100 * lo:.2f}–{100 * hi:.2f} %) on {a['printer']} at ±{a['accuracy_mm']:g} mm, "
+            f"target {100 * a['target']:g} %, linear study of {a['samples']:,} prints, gears seated by their meshes")
+    if not a["reached"]:
+        why = a.get("limited_by")
+        line += ("\n  warning: the target is not reached" + (f": it needs {why['needed_mm']:g} mm, and more than "
+                 f"{a['backlash_per_gear_mm']:g} mm does not build ({why['problem']})" if why else
+                 ": not even at the most play auto tries"))
+    return line
+
+
 def run(args) -> int:
     from .. import pipeline
     from ..export.bill import shopping_list
@@ -50,6 +64,7 @@ def run(args) -> int:
                               for p in man["parts"]], "purchased": man.get("purchased", []),
                     "findings": [{"severity": f.severity, "key": f.key, "message": f.message} for f in findings],
                     "printer_values": "measured" if kit.printer.measured else "typical",
+                    "auto_play": loaded.auto,
                     "seconds": round(time.perf_counter() - t0, 3)})
         return 0
     for f in findings:
@@ -65,5 +80,7 @@ def run(args) -> int:
               f"{sum(p['count'] for p in man['parts'])} to print) in {seconds:.2f} s")
         return 0
     print(mech.bill_text(spec, man, dest, seconds))
+    if loaded.auto:
+        print(auto_text(loaded.auto))
     print(shopping_list(man))
     return 0

@@ -8,6 +8,7 @@ import sys
 import time
 
 from .common import add_common_options, bounded_int, note, overrides, print_json, quiet_text
+from .tolerance import _unit_float
 
 __all__ = ["add_parser", "run"]
 
@@ -18,6 +19,8 @@ def add_parser(sub) -> None:
     p.add_argument("--samples", type=bounded_int(4, 10_000), default=None,
                    help="crank angles over one cycle, 4 to 10,000 (default: the config's checks.samples)")
     p.add_argument("--no-plates", action="store_true", help="lay out the build plates but write nothing")
+    p.add_argument("--max-jam-probability", type=_unit_float, default=None, metavar="P",
+                   help="fail (exit 1) when the quick tolerance study's P(jam) is above P")
     add_common_options(p, "folder for the build plates (default: <kit>/plates; old name --plates)", "--plates",
                        json_help="print one JSON object (ok, findings, figures) and nothing else")
     p.set_defaults(run=run)
@@ -46,7 +49,8 @@ def run(args) -> int:
 
     t0 = time.perf_counter()
     loaded, kit, result, folder = pipeline.check(args.target, args.samples, Bar(not (args.json or args.quiet)), args.out,
-                                                 not args.no_plates, note, overrides(args))
+                                                 not args.no_plates, note, overrides(args),
+                                                 args.max_jam_probability)
     seconds = time.perf_counter() - t0
     if args.json:
         out = {"ok": result.ok, "kind": loaded.mechanism.kind, "design": loaded.name, "config": str(loaded.path),
@@ -55,5 +59,10 @@ def run(args) -> int:
         print_json(out)
     else:
         text = loaded.mechanism.check_text(loaded.spec, result, folder, seconds)
+        if "P(jam)" not in text:  # a mechanism's text that does not list every finding: before its verdict
+            head, _, verdict = text.rstrip("\n").rpartition("\n")
+            extra = [f"  {dict(fail='FAIL', warn='WARN', info='ok').get(f.severity)}  tolerance: {f.message}"
+                     for f in result.findings if f.check == "tolerance"]
+            text = "\n".join([head, *extra, verdict]) if head else "\n".join([*extra, verdict])
         print(quiet_text(text) if args.quiet else text)
     return 0 if result.ok else 1

@@ -54,6 +54,8 @@ def add_parser(sub) -> None:
     p.add_argument("--chunk", type=bounded_int(1, 10_000_000), default=None,
                    help="samples per task (default 5000, or a 16th of a study over 80,000 samples, at most 100,000; "
                         "with the seed it fixes the result: raise it for many workers)")
+    p.add_argument("--exact", type=bounded_int(1, 1_000_000), default=None, metavar="N",
+                   help="also N prints of the kit's real geometry (exact Monte Carlo, one task each on the cluster)")
     p.add_argument("--resume", action="store_true", help="continue an interrupted run with the same settings")
     add_common_options(p, "folder for chunks.jsonl and result.json (default <kit>/tolerance or out/<name>/tolerance)")
     add_workers_options(p)
@@ -70,7 +72,19 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
     lines = [f"{r['design']}: {r['samples']:,} simulated prints at ±{r['accuracy_mm']:g} mm ({r['accuracy_source']}), "
              f"{r['features']} printed features, {r['margins']} margins",
              f"P(jam) = {_pct(o['probability'])}  (95 % CI {_pct(o['ci95'][0])} – {_pct(o['ci95'][1])}; "
-             f"{o['jams']:,} of {r['samples']:,})", "",
+             f"{o['jams']:,} of {r['samples']:,}; gears seated by their meshes in their bores)"]
+    wc = r.get("worst_case")
+    if wc:
+        lines.append(f"worst case, every gear centred on its post (no bore play credited): P(jam) = "
+                     f"{_pct(wc['probability'])}  (95 % CI {_pct(wc['ci95'][0])} – {_pct(wc['ci95'][1])})")
+    ex = r.get("exact")
+    if ex:
+        lines.append(f"exact: P(jam) = {_pct(ex['probability'])}  (95 % CI {_pct(ex['ci95'][0])} – {_pct(ex['ci95'][1])}; "
+                     f"{ex['jams']} of {ex['prints']:,} prints of the real geometry"
+                     + (f": {', '.join(f'{k} {v}' for k, v in ex['why'].items())}" if ex["why"] else "")
+                     + f") — {'agrees with' if ex['agrees'] else 'DISAGREES with'} the linear figure; "
+                     f"{ex['seconds_per_print']:.3f} s a print, {ex['seconds']:.1f} s on {ex['workers']} worker(s)")
+    lines += ["",
              f"{'where':<{w}}{'kind':<10}{'at':<9}{'nominal mm':>11}{'P(jam)':>10}   95 % CI"]
     for u in r["units"][:limit]:
         lines.append(f"{u['unit']:<{w}}{u['group']:<10}{u['where']:<9}{u['least_nominal_mm']:>11.4f}"
@@ -99,7 +113,8 @@ def run(args) -> int:
     from .. import studies
 
     res = studies.tolerance(args.target, args.samples, args.accuracy_mm, args.seed, args.workers, args.scheduler,
-                            args.out, args.resume, args.check_samples, overrides(args), progress=not (args.json or args.quiet),
+                            args.out, args.resume, args.check_samples, overrides(args),
+                            progress=not (args.json or args.quiet), exact=args.exact,
                             **({"chunk": args.chunk} if args.chunk else {}))
     r = res.result
     limit = args.max_jam_probability

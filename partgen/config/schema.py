@@ -11,7 +11,7 @@ from typing import Annotated
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
-__all__ = ["Strict", "Printer", "Material"]
+__all__ = ["Strict", "Printer", "Material", "ToleranceTarget", "AUTO_PLAY_START_MM"]
 
 MAX = 10_000.0  # the largest magnitude any number may have (10 m as a length): larger is a typo, not a design
 Pos = Annotated[float, Field(gt=0, le=MAX)]
@@ -137,3 +137,13 @@ class Printer(Strict):
 class Material(Strict):
     name: Annotated[str, Field(min_length=1, max_length=200)]
     density_g_cm3: Density
+
+
+AUTO_PLAY_START_MM = 0.05  # backlash_per_gear_mm: auto is built and checked at this value first (docs/tolerance.md)
+
+
+class ToleranceTarget(Strict):
+    """What ``auto`` play is chosen for: the least play with P(jam) at most this on the design's
+    printer (the linear study, gears seated by their meshes)."""
+
+    max_jam_probability: Annotated[float, Field(gt=0, le=1)] = 0.01

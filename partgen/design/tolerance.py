@@ -29,6 +29,14 @@ outline     a non-gear part's outline, as a diameter                  A / 3
 height      a printed height (a part's thickness, a spacer's height)  A / 3 (profiles give no
                                                                       z accuracy)
 =========== ========================================================= =====================
+
+Where a gear sits in its bore (``Play``, ``seat_factor``; docs/tolerance.md): a mesh that runs out
+of backlash touches on both flanks, and the two flank forces push its gears apart along the line
+of centres (their tangential parts cancel, whatever the driving sense), taking up the bores' radial
+play until the mesh runs free or the bore bottoms. A body with one mesh gives that mesh all of its
+play (κ = 1); a body with several (an idler, a link with its gear and an idler pin) moves along
+the sum of their separating directions and gives each mesh κ = min_k n̂·u_k of it at once. A model
+made with ``seated=False`` credits no play (each gear centred on its post: the worst case).
 """
 
 from __future__ import annotations
@@ -38,8 +46,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
-           "wilson", "summarise", "chunk_sizes"]
+__all__ = ["KINDS", "GROUPS", "Feature", "Margin", "Play", "seat_factor", "seat_credit", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
+           "wilson", "summarise", "chunk_sizes", "least_play", "PLAY_STEP_MM", "AUTO_SAMPLES"]
 
 KINDS = ("hole", "pin", "tooth", "position", "outline", "height")
 GROUPS = ("joint", "mesh", "clearance")
@@ -73,6 +81,9 @@ class Margin:
     what : which margin of the unit ("radial gap", "backlash", "tip-root D1→M1", "gap", "axial gap").
     nominal : its value in the nominal kit, mm.
     where : the link (or "base") it sits on, for the reader.
+    per_backlash : mm of this margin per mm of ``backlash_per_gear`` (each gear of a mesh thinned
+        by Δ at its reference pitch circle opens the backlash on the operating pitch circle by
+        Δ·(r_w/r)·2 = 2Δ·cos α/cos α_w; 0 for any other margin): what ``least_play`` moves.
     """
 
     unit: str
@@ -80,6 +91,46 @@ class Margin:
     what: str
     nominal: float
     where: str = ""
+    per_backlash: float = 0.0
+
+
+@dataclass(frozen=True)
+class Play:
+    """A floating body's radial play in its bore: ``nominal`` mm + Σ terms[feature] · δ_feature
+    (terms as ``ModelBuilder.add`` takes them: ``(name, kind, part) -> mm per mm``)."""
+
+    nominal: float
+    terms: dict
+
+
+def seat_factor(directions) -> float:
+    """κ: the share of a body's radial play that each of its meshes gets at once when the meshes'
+    two-flank forces push it. ``directions``: the unit separating directions (from each mate
+    towards this body, in one frame) of its meshes; the body moves along their sum n̂ and mesh k's
+    centre distance grows by κ_k = n̂·u_k of its play; the least of them is returned (0 when they
+    cancel: an idler on the line of its two mates can give neither any play)."""
+    u = np.asarray(directions, dtype=float).reshape(-1, 2)
+    u = u / np.linalg.norm(u, axis=1, keepdims=True)
+    if len(u) == 1:
+        return 1.0
+    s = u.sum(axis=0)
+    n = float(np.linalg.norm(s))
+    if n < 1e-9:
+        return 0.0
+    return max(0.0, float((u @ (s / n)).min()))
+
+
+def seat_credit(plays) -> tuple[float, dict]:
+    """Σ κ · play over ``plays`` [(κ, Play)]: the growth of a mesh's centre distance when its
+    bodies sit where their meshes push them, as (nominal mm, terms)."""
+    nominal, terms = 0.0, {}
+    for k, play in plays:
+        if k == 0.0:
+            continue
+        nominal += k * play.nominal
+        for key, c in play.terms.items():
+            terms[key] = terms.get(key, 0.0) + k * c
+    return nominal, terms
 
 
 @dataclass(frozen=True, eq=False)
@@ -306,3 +357,45 @@ def with_means(model: MarginModel, mean: np.ndarray, why: str = "") -> MarginMod
         return model
     return MarginModel(model.features, model.margins, model.coeff, model.sigma, model.nominal + mean @ model.coeff,
                        model.accuracy_mm, model.source + (f"; {why}" if why else ""))
+
+
+PLAY_STEP_MM = 0.005  # auto play is a whole number of these (quantised: the same kit on any machine)
+PLAY_MAX_MM = 0.5
+AUTO_SAMPLES = 20_000  # prints the auto choice is made on (seed 0, chunk 0): ~0.1 s for the default chain
+
+
+def least_play(model: MarginModel, start_mm: float, target: float, samples: int = AUTO_SAMPLES, seed: int = 0,
+               step: float = PLAY_STEP_MM, most: float = PLAY_MAX_MM) -> dict:
+    """The least ``backlash_per_gear`` (a whole number of ``step`` from ``step`` to ``most``) with at most
+    ``floor(target · samples)`` jams among ``samples`` fixed prints (seed, chunk 0) of ``model``,
+    which was made from a kit with ``start_mm``; each margin moves by ``per_backlash`` · (value −
+    start). The same draws for every value, so the jams only fall as the play grows: a bisection
+    finds the least value exactly; ties cannot arise (one value per count). When even ``most`` is
+    not enough (other margins jam more often than the target), the least value whose jams are
+    those of ``most``, with ``reached: False``."""
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
+    z = rng.standard_normal((samples, len(model.features)))
+    base = model.nominal[None, :] + z @ (model.coeff * model.sigma[:, None])
+    slope = np.array([m.per_backlash for m in model.margins])
+    allowed = int(math.floor(target * samples + 1e-9))
+    steps = max(1, int(round(most / step)))
+
+    def jams(k: int) -> int:
+        return int(((base + slope[None, :] * (k * step - start_mm)) < 0.0).any(axis=1).sum())
+    lo, hi = 1, steps  # at least one step: the nominal kit, every gear centred, keeps some backlash
+    floor = jams(hi)
+    reached = floor <= allowed
+    if not reached:  # other margins (fits, clearances) jam more than the target: the least play that
+        allowed = floor  # reaches what the most play reaches (more play would buy nothing)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if jams(mid) <= allowed:
+            hi = mid
+        else:
+            lo = mid + 1
+    k = lo
+    j = jams(k)
+    lo95, hi95 = wilson(j, samples)
+    return {"backlash_per_gear_mm": round(k * step, 6), "reached": reached, "target": target, "samples": samples,
+            "seed": seed, "jams": j, "probability": j / samples, "ci95": [lo95, hi95],
+            }

@@ -175,11 +175,12 @@ class GearChain:
 
         return check_kit(kit, samples, progress)
 
-    def tolerance_model(self, spec: ChainSpec, kit: Kit, result: Result, accuracy_mm: float):
-        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel``."""
+    def tolerance_model(self, spec: ChainSpec, kit: Kit, result: Result, accuracy_mm: float, seated: bool = True):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel`` (``seated``: gears
+        sit where their meshes push them in their bores; otherwise centred, the worst case)."""
         from .tolerance import tolerance_model
 
-        return tolerance_model(kit, result, accuracy_mm)
+        return tolerance_model(kit, result, accuracy_mm, seated)
 
     def trace(self, spec: ChainSpec, kit: Kit | None, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:

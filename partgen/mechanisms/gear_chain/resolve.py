@@ -19,6 +19,7 @@ from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
 from ...config.loader import LoadedDesign, load_design, printer_fit, printer_limits
+from ...config.schema import AUTO_PLAY_START_MM
 from ...checks.settings import CheckSettings
 from .params import Joints, KitParams
 
@@ -191,7 +192,7 @@ def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
         addendum_coeff=g.addendum_coeff,
         dedendum_coeff=g.dedendum_coeff,
         cutter_tip_coeff=g.cutter_tip_radius_coeff,
-        backlash_per_gear=g.backlash_per_gear_mm,
+        backlash_per_gear=AUTO_PLAY_START_MM if g.backlash_per_gear_mm == "auto" else g.backlash_per_gear_mm,
         profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
         chord_tolerance=g.chord_tolerance_mm,
     )

@@ -6,6 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
+from ...config.schema import ToleranceTarget
 from ...config.schema import (MAX, Coeff, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict,
                               Teeth, Text)
 
@@ -134,7 +135,7 @@ class Gears(Strict):
     dedendum_coeff: Annotated[float, Field(gt=0, le=2.5)] = 1.25
     cutter_tip_radius_coeff: Annotated[float, Field(ge=0, le=0.6)] = 0.38
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1, le=1.5)] = "auto"
-    backlash_per_gear_mm: Gap = 0.05
+    backlash_per_gear_mm: Gap | Literal["auto"] = 0.05  # auto: the least that meets tolerance.max_jam_probability
     face_width_mm: Length
     chord_tolerance_mm: Annotated[float, Field(ge=1e-4, le=0.1)] = 0.001
     hub_wall_mm: Length = 2.5
@@ -244,6 +245,7 @@ class Design(Strict):
     base: Base = Base()
     pen: Pen = Pen()
     checks: Checks = Checks()
+    tolerance: ToleranceTarget = ToleranceTarget()
     belts: Belts | None = None
     material: Material
 

@@ -9,8 +9,18 @@ a diameter):
 * **Centre distances.** D_j turns about B_j's proximal hole (both sit on B_j-1's post), M_j on
   B_j's idler pin, G_j+1 on B_j's distal post: each centre distance of a stage is a distance
   between two features of plate B_j, changed by the projection of their position deviations on
-  the line of centres (the drive pair: the base's ground post and drive bearing). Bearing play is
-  not credited (the gears sit centred on their pins: conservative).
+  the line of centres (the drive pair: the base's ground post and drive bearing).
+* **Where the gears sit** (``seated``, the default; docs/tolerance.md). The floating bodies are
+  the drive gear (on its axle in the base), each idler M_j (on B_j's pin) and each link B_j with
+  its gear G_j (on B_j-1's post; G1 on the ground post): D_j is pressed onto B_j-1, so B_j's play
+  moves M_j's pin away from D_j. A mesh that runs out of backlash pushes its two bodies apart
+  along its line of centres; a body gives each of its meshes ``κ`` of its radial play at once
+  (``design.tolerance.seat_factor``: 1 for one mesh; for two, the projection of their summed
+  separating directions, the least over the crank's turn for a link whose two meshes sit on
+  different plates). The play is the printed one (nominal + bore and pin deviations), so the
+  credit and the fit's own margin move together. ``seated=False``: every gear centred (no play
+  credited, the worst case). The clearances between passing parts are taken with the bodies
+  centred.
 * **Meshes**: backlash (circumferential, on the operating pitch circle) changes by
   ``2·tan α_w · Δa − (δ_a + δ_b)/cos α_w`` (a flank moved out by e thickens the tooth by
   2e/cos α_w there); each tip-to-root clearance by ``Δa − δ_a/2 − δ_b/2``.
@@ -28,7 +38,7 @@ import numpy as np
 
 from ...core.findings import Result
 from ...design.kinematics import link_angles
-from ...design.tolerance import Margin, MarginModel, ModelBuilder
+from ...design.tolerance import Margin, MarginModel, ModelBuilder, Play, seat_credit, seat_factor
 from .kit import Kit
 
 __all__ = ["tolerance_model"]
@@ -139,29 +149,81 @@ def _pin_of(c) -> tuple[str, str, str, str]:
     return c.a, "bore", c.b, "post" if c.b != "base" else "ground post"
 
 
-def tolerance_model(kit: Kit, result: Result, accuracy_mm: float) -> MarginModel:
+SEAT_ANGLES = 72  # crank angles over a turn at which a link's seat factor is taken (the least)
+
+
+def _mesh_bodies(chain: _Chain, a: str, b: str, theta: float) -> list[tuple[str, np.ndarray]] | None:
+    """The floating bodies a mesh's centre distance depends on, each with the world direction
+    (at crank angle ``theta``) in which moving that body in its bore opens the mesh. A body is
+    named by the gear that runs in the bore: ``drive``, ``G<j>`` (link B_j) or ``M<j>``/``T<j>``."""
+    if {a, b} == {"G1", "drive"}:
+        dc = np.asarray(chain.kit.mechanism.drive_centre, dtype=float)
+        u = dc / np.linalg.norm(dc)
+        return [("drive", u), ("G1", -u)]
+    names = {name[0]: name for name in (a, b)}
+    m = names.get("M") or names.get("T")
+    if m is None:
+        return None
+    j = int(m[1:])
+    R = _rot(link_angles(chain.kit.mechanism, theta)[j])
+    c = chain.idler[j]
+    if "D" in names:  # M_j on B_j's pin; B_j (on G_j's bore) carries the pin away from D_j
+        u = R @ (c / np.linalg.norm(c))
+        return [(m, u), (f"G{j}", u)]
+    post = np.array([chain.length[j], 0.0])
+    v = R @ ((post - c) / np.linalg.norm(post - c))  # from M_j towards G_j+1
+    return [(m, -v), (f"G{j + 1}", v)]
+
+
+def seat_factors(kit: Kit, pairs, angles: int = SEAT_ANGLES) -> dict[str, float]:
+    """κ of every floating body whose meshes are ``pairs`` (name pairs): the least over ``angles``
+    crank angles of ``seat_factor`` of its meshes' separating directions."""
+    chain = _Chain(kit)
+    kappa: dict[str, float] = {}
+    for theta in np.linspace(0.0, 2 * math.pi, angles, endpoint=False):
+        dirs: dict[str, list] = {}
+        for a, b in pairs:
+            for body, u in _mesh_bodies(chain, a, b, float(theta)) or []:
+                dirs.setdefault(body, []).append(u)
+        for body, us in dirs.items():
+            kappa[body] = min(kappa.get(body, 1.0), seat_factor(us))
+    return kappa
+
+
+def tolerance_model(kit: Kit, result: Result, accuracy_mm: float, seated: bool = True) -> MarginModel:
     """The margins of ``result`` (the nominal check of ``kit``) as a ``MarginModel`` for a printer
-    accuracy of ± ``accuracy_mm``."""
+    accuracy of ± ``accuracy_mm`` (``seated``: gears where their meshes push them in their bores;
+    otherwise centred)."""
     b = ModelBuilder()
     chain = _Chain(kit)
     fits = {tuple(r["parts"]): r for r in result.figures.get("fits", {}).get("rows", [])}
     # running fits
+    plays: dict[str, Play] = {}
     for c in kit.contacts:
         if c.kind != "running":
             continue
         hole, hf, pin, pf = _pin_of(c)
         nominal = fits.get((c.a, c.b), {}).get("radial_gap_mm", c.radial_gap)
-        b.add(Margin(f"{c.a} on {c.b}", "joint", "radial gap", float(nominal), _where(c.a)),
-              {(f"{hole} {hf}", "hole", hole): 0.5, (f"{pin} {pf}", "pin", pin): -0.5})
+        terms = {(f"{hole} {hf}", "hole", hole): 0.5, (f"{pin} {pf}", "pin", pin): -0.5}
+        b.add(Margin(f"{c.a} on {c.b}", "joint", "radial gap", float(nominal), _where(c.a)), terms)
+        plays["drive" if c.a == "drive_axle" else c.a] = Play(float(nominal), terms)
     # meshes
     parts = {p.name: p for p in kit.parts}
-    for row in result.figures.get("meshes", []):
+    rows = result.figures.get("meshes", [])
+    kappa = seat_factors(kit, [tuple(r["pair"]) for r in rows]) if seated else {}
+    for row in rows:
         a, bb = row["pair"]
         ga, gb = parts[a].gear, parts[bb].gear
         got = _mesh_terms(chain, a, bb)
         if got is None:
             continue
         pos, _ = got
+        bodies = _mesh_bodies(chain, a, bb, 0.0) or []
+        credit, credit_terms = seat_credit([(kappa.get(body, 0.0), plays[body]) for body, _ in bodies
+                                            if body in plays])
+        pos = dict(pos)
+        for key, c in credit_terms.items():
+            pos[key] = pos.get(key, 0.0) + c
         a_op = float(row["centre_distance_mm"])
         rb = (ga.pitch_radius + gb.pitch_radius) * math.cos(ga.system.pressure_angle)
         aw = math.acos(min(1.0, rb / a_op))
@@ -169,12 +231,13 @@ def tolerance_model(kit: Kit, result: Result, accuracy_mm: float) -> MarginModel
         terms = {k: 2 * math.tan(aw) * v for k, v in pos.items()}
         terms[_tooth(a)] = -1.0 / math.cos(aw)
         terms[_tooth(bb)] = -1.0 / math.cos(aw)
-        b.add(Margin(unit, "mesh", "backlash", float(row["backlash_mm"]), where), terms)
+        b.add(Margin(unit, "mesh", "backlash", float(row["backlash_mm"]) + 2 * math.tan(aw) * credit, where,
+                     2 * math.cos(ga.system.pressure_angle) / math.cos(aw)), terms)
         for key, value in row["tip_clearance_mm"].items():
             terms = dict(pos)
             terms[_tooth(a)] = -0.5
             terms[_tooth(bb)] = -0.5
-            b.add(Margin(unit, "mesh", f"tip-root {key.replace('->', '→')}", float(value), where), terms)
+            b.add(Margin(unit, "mesh", f"tip-root {key.replace('->', '→')}", float(value) + credit, where), terms)
     # Eq 12: D_j and G_j+1 share a layer and turn at different speeds, so their tips pass each
     # other on the line of centres at some crank angle: their tip circles must clear
     for s in kit.mechanism.stages:

@@ -9,6 +9,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...config.loader import LoadedDesign, printer_fit, printer_limits
+from ...config.schema import AUTO_PLAY_START_MM
 from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose_z
@@ -57,7 +58,7 @@ def resolve_pair(loaded: LoadedDesign) -> PairSpec:
     d, p = loaded.design, loaded.printer
     g = d.gears
     system = ToothSystem(module=g.module_mm, pressure_angle=math.radians(g.pressure_angle_deg),
-                         backlash_per_gear=g.backlash_per_gear_mm,
+                         backlash_per_gear=AUTO_PLAY_START_MM if g.backlash_per_gear_mm == "auto" else g.backlash_per_gear_mm,
                          profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
                          chord_tolerance=g.chord_tolerance_mm)
     g1, g2 = (make_gear(z, system) for z in g.teeth)

@@ -153,11 +153,19 @@ class GearPair:
         res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
-    def tolerance_model(self, spec: PairSpec, kit: PairKit, result: Result, accuracy_mm: float):
-        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel``."""
+    def tolerance_model(self, spec: PairSpec, kit: PairKit, result: Result, accuracy_mm: float, seated: bool = True):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel`` (``seated``: gears
+        sit where their meshes push them in their bores; otherwise centred, the worst case)."""
         from .tolerance import tolerance_model
 
-        return tolerance_model(kit, result, accuracy_mm)
+        return tolerance_model(kit, result, accuracy_mm, seated)
+
+    def tolerance_exact(self, spec: PairSpec, kit: PairKit, result: Result, model, seated: bool = True):
+        """(task function, shared data) of the exact Monte Carlo: ``fn(shared, seed, index)`` makes
+        print ``index`` of the real geometry and says whether it jams (``exact``)."""
+        from .exact import exact_print, exact_shared
+
+        return exact_print, exact_shared(kit, result, model, seated)
 
     def trace(self, spec: PairSpec, kit: PairKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """The transmission error over one output revolution from the printed outlines: how far the

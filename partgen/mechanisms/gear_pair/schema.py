@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
-from ...config.schema import Gap, Length, Material, Name, Strict, Teeth, Text
+from ...config.schema import ToleranceTarget, Gap, Length, Material, Name, Strict, Teeth, Text
 
 __all__ = ["GearPairDesign"]
 
@@ -16,7 +16,7 @@ class PairGears(Strict):
     pressure_angle_deg: Annotated[float, Field(ge=10.0, le=35.0)] = 20.0
     teeth: Annotated[list[Teeth], Field(min_length=2, max_length=2)]  # driver (input), driven (output)
     face_width_mm: Length = 8.0
-    backlash_per_gear_mm: Gap = 0.1  # circumferential thinning of each gear's tooth at its pitch circle
+    backlash_per_gear_mm: Gap | Literal["auto"] = 0.1  # auto: the least that meets tolerance.max_jam_probability  # circumferential thinning of each gear's tooth at its pitch circle
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1.0, le=1.0)] = "auto"
     chord_tolerance_mm: Length = 0.01
 
@@ -46,4 +46,5 @@ class GearPairDesign(Strict):
     axles: Axles = Axles()
     base: PairBase = PairBase()
     checks: PairChecks = PairChecks()
+    tolerance: ToleranceTarget = ToleranceTarget()
     material: Material
