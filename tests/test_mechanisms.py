@@ -8,12 +8,53 @@ import pytest
 import yaml
 
 from partgen.cli.main import main
-from partgen.core.protocol import Mechanism
+from partgen.core.protocol import OPTIONAL_HOOKS, Mechanism, OptionalHooks
 from partgen.errors import ConfigError
 from partgen.mechanisms import REGISTRY, load_design
 
 ROOT = Path(__file__).resolve().parents[1]
-PROTOCOL = [n for n, v in vars(Mechanism).items() if inspect.isfunction(v) and not n.startswith("_")]
+
+
+def shape(fn) -> list[tuple[str, object, object]]:
+    """A callable's parameters as the callers see them (self left out): name, kind, default. The
+    annotations may be narrower in a mechanism (its own spec and kit types)."""
+    ps = list(inspect.signature(fn).parameters.values())
+    if ps and ps[0].name == "self":
+        ps = ps[1:]
+    return [(p.name, p.kind, p.default) for p in ps]
+
+
+def protocol_members(proto) -> dict[str, object]:
+    """name -> the protocol's function, or "attribute" for a declared attribute."""
+    out = {n: v for n, v in vars(proto).items() if inspect.isfunction(v) and not n.startswith("_")}
+    out.update({n: "attribute" for n in getattr(proto, "__annotations__", {}) if not n.startswith("_")})
+    return out
+
+
+REQUIRED, OPTIONAL = protocol_members(Mechanism), protocol_members(OptionalHooks)
+
+
+def drift(mech) -> list[str]:
+    """What about ``mech`` differs from the protocol: a missing member, an extra public member, a
+    method shaped otherwise (parameters, kinds, defaults), an attribute that is a method."""
+    out = []
+    public = {n for n in dir(mech) if not n.startswith("_")}
+    for name, want in REQUIRED.items():
+        if name not in public:
+            out.append(f"missing {name}")
+        elif want == "attribute":
+            if callable(getattr(mech, name)) and name != "schema":
+                out.append(f"{name} should be an attribute")
+        elif not callable(getattr(mech, name)):
+            out.append(f"{name} should be a method")
+        elif shape(getattr(mech, name)) != shape(want):
+            out.append(f"{name}{inspect.signature(getattr(mech, name))} is not the protocol's {inspect.signature(want)}")
+    for name in sorted(public - set(REQUIRED)):
+        if name not in OPTIONAL:
+            out.append(f"extra {name}: not in core.protocol (declare it, or make it private)")
+        elif shape(getattr(mech, name)) != shape(OPTIONAL[name]):
+            out.append(f"{name}{inspect.signature(getattr(mech, name))} is not the hook's {inspect.signature(OPTIONAL[name])}")
+    return out
 
 
 def test_every_shipped_config_names_a_registered_kind():
@@ -22,13 +63,53 @@ def test_every_shipped_config_names_a_registered_kind():
 
 
 @pytest.mark.parametrize("kind", list(REGISTRY))
-def test_each_mechanism_holds_the_whole_protocol(kind):
+def test_each_mechanism_is_exactly_the_protocol(kind):
+    """Every member the protocol declares, shaped as it declares it, and nothing public besides the
+    optional hooks it declares too (issue 26: the protocol is what is called)."""
     mech = REGISTRY[kind]
     assert mech.kind == kind
-    missing = [n for n in PROTOCOL + ["bill_text", "check_text", "trace_text", "csv", "subtitle", "findings"]
-               if not callable(getattr(mech, n, None))]
-    assert not missing, missing
+    assert not drift(mech), drift(mech)
     assert mech.schema.model_fields["kind"].annotation.__args__ == (kind,)
+    assert set(OPTIONAL) == set(OPTIONAL_HOOKS)
+
+
+def test_the_signature_test_catches_a_drift():
+    """A mechanism with a member missing, one with an extra argument, an undeclared public member and
+    a hook of another shape: each is named."""
+    base = REGISTRY["gear_pair"]
+
+    class Broken(type(base)):
+        def check(self, spec, kit, samples=None, progress=None, extra=1):  # an argument the callers never pass
+            return super().check(spec, kit, samples, progress)
+
+        def shiny(self):  # public, undeclared
+            return 1
+
+        def tolerance_model(self, spec, kit, result):  # a hook shaped otherwise
+            return None
+    got = drift(Broken())
+    assert any(d.startswith("check(") for d in got), got
+    assert any(d.startswith("extra shiny") for d in got), got
+    assert any(d.startswith("tolerance_model(") for d in got), got
+
+    class Missing(type(base)):
+        subtitle = None  # not a method any more
+    assert any("subtitle should be a method" in d for d in drift(Missing())), drift(Missing())
+    assert not drift(base)
+
+
+def test_callers_use_only_declared_members():
+    """pipeline, studies, the CLI and export call on a mechanism only what the protocol declares
+    (its members, or the optional hooks by getattr): read from their source."""
+    import re
+
+    pkg = ROOT / "partgen"
+    src = "\n".join(p.read_text() for p in [pkg / "pipeline.py", pkg / "studies.py", *sorted((pkg / "cli").glob("*.py")),
+                                           *sorted((pkg / "export").glob("*.py"))])
+    called = set(re.findall(r"\b(?:mech|mechanism|loaded\.mechanism)\.([a-z_]+)", src))
+    called |= set(re.findall(r"getattr\((?:mech|mechanism|loaded\.mechanism), \"([a-z_]+)\"", src))
+    assert called, "found no calls: the pattern no longer matches the callers"
+    assert called <= set(REQUIRED) | set(OPTIONAL), called - set(REQUIRED) - set(OPTIONAL)
 
 
 def test_a_misspelt_kind_is_one_error_on_kind(tmp_path, capsys):

@@ -20,7 +20,7 @@ from partgen.checks.printability import check_printability
 from partgen.checks.printability import printed_extents
 from partgen.design.drivetrain import Limits, choose_stage, stage_breaches
 from partgen.design.gearing import ToothSystem
-from partgen.design.mechanism import gear_rules
+from partgen.design.rules import gear_rules
 from partgen.design.rules import GearRules
 from partgen.errors import ConfigError, DesignError
 

@@ -16,7 +16,7 @@ from shapely.geometry import Point, Polygon, box
 from ..core.protocol import Kit
 from ..design import involute, rules
 from ..design.gearing import centre_distance
-from ..design.mechanism import gear_rules
+from ..design.rules import gear_rules
 from ..geometry.gear import gear_outline
 from ..geometry.measure import place2d
 from ..core.findings import Finding

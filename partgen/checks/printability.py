@@ -10,7 +10,7 @@ from shapely.geometry import MultiPolygon, Point, Polygon
 
 from ..core.protocol import Kit
 from ..design import rules
-from ..design.mechanism import gear_rules
+from ..design.rules import gear_rules
 from ..core.findings import Finding
 from ..geometry.solid import mesh_arrays
 from .motion import PartGeometry

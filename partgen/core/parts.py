@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Part", "Bore"]
+__all__ = ["Part", "Bore", "Contact"]
 
 
 @dataclass(frozen=True)
@@ -35,3 +35,19 @@ class Part:
     printed: bool = True
     info: tuple = ()
     bores: tuple[Bore, ...] = ()  # what takes a pin or axle (checks.bores tests each is open)
+
+
+@dataclass(frozen=True)
+class Contact:
+    """Two parts of a kit meant to touch, and how (``checks.fits`` measures each over the motion).
+
+    kind: "running" (turns on it, radial gap = running clearance / 2), "press" (D-fit, gap = press
+    clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh). window: world
+    z-range where the fit is (the bore's length), None for thrust and mesh. radial_gap: the designed
+    radial clearance, mm."""
+
+    a: str
+    b: str
+    kind: str
+    window: tuple[float, float] | None = None
+    radial_gap: float = 0.0

@@ -13,7 +13,8 @@ from .findings import Result
 from .parts import Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "ParamsKit", "Mechanism", "Motion", "Trace", "Section", "Step", "TOLERANCE_HOOK", "tolerance_hook"]
+__all__ = ["Kit", "ParamsKit", "Mechanism", "OptionalHooks", "OPTIONAL_HOOKS", "Motion", "Trace", "Section", "Step",
+           "TOLERANCE_HOOK", "tolerance_hook"]
 
 
 @runtime_checkable
@@ -72,14 +73,18 @@ class Motion:
 
 @dataclass(frozen=True)
 class Trace:
-    """What `trace` found: figures (JSON-able), named files (name -> bytes, written into the plots
-    folder) and the text the CLI prints. ``data``: (n, k) rows for ``--csv`` with ``columns``."""
+    """What `trace` found: figures (JSON-able), the names of the plot files the mechanism wrote into
+    the ``out`` folder it was given (none without one), and the text the CLI prints. ``data``: (n, k)
+    rows for ``--csv`` with ``columns``."""
 
     stats: dict
-    files: dict = field(default_factory=dict)
+    files: tuple = ()
     text: str = ""
     columns: tuple[str, ...] = ()
     data: np.ndarray | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "files", tuple(self.files))
 
 
 Section = tuple[str, str]  # (title, html) of a report page
@@ -87,42 +92,69 @@ Step = tuple[str, tuple[str, ...]]  # an assembly step: (what to do, the names o
 
 
 class Mechanism(Protocol):
-    """One kind of mechanism, as a vertical slice (schema, resolver, kit, checks, trace, report)."""
+    """One kind of mechanism, as a vertical slice (schema, resolver, kit, checks, trace, report): exactly
+    what the pipeline, the studies, the CLI and export call. ``tests/test_mechanisms.py`` holds every
+    registered mechanism to these members and their signatures (and to ``OptionalHooks`` for the rest)."""
 
-    kind: str
-    title: str
-    schema: type  # the pydantic model of its design YAML
-    motion: Motion
+    kind: str            # the design file's ``kind:``
+    title: str           # a human name for the kind
+    schema: type         # the pydantic model of its design YAML
+    motion: Motion       # the motion parameter: its label ("crank angle", "bend", …), unit and range
+    role_colours: dict   # part role -> colour (#rrggbb) in pictures, the GLB and the report
+    csv_header: str      # the first line `trace --csv` writes (and recognises as its own file)
+    trace_needs_kit: bool  # whether `trace` needs the built kit (else it traces the design alone)
 
     def resolve(self, raw) -> object:
         """The validated YAML (``config.loader.LoadedDesign``) → the mechanism's spec (mm, rad);
         ``ConfigError`` naming the key for anything the user can fix."""
         ...
 
-    def build(self, spec, progress: Callable | None = None) -> Kit:
+    def build(self, spec, progress=None) -> Kit:
         """Every part of the kit; ``ConfigError`` (with the key) when a size leaves no part."""
         ...
 
-    def refuse(self, spec, kit: Kit) -> None: ...                    # DesignError: `build` writes no such kit
-    def design_summary(self, spec, kit: Kit) -> dict: ...            # the manifest's "design"
-    def kit_files(self, spec, kit: Kit) -> dict[str, bytes]: ...     # design.yaml (pinned), printer.yaml
-    def plate_margin(self, spec) -> float: ...                       # mm between parts on a plate
-    def check(self, spec, kit: Kit, samples: int | None, progress: Callable | None) -> Result: ...
-    def trace(self, spec, kit: Kit | None, samples: int | None) -> Trace: ...
-    def report_sections(self, spec, kit: Kit, result: Result, trace: Trace, pictures) -> list[Section]: ...
-    def bill_text(self, spec, manifest: dict) -> str: ...
-    def check_text(self, spec, result: Result) -> str: ...
-    # Optional: ``assembly_steps(spec, kit) -> list[Step]``, the steps in the order a maker puts the
-    # kit together, each with the parts it uses (the report shows them with their pictures). A
-    # mechanism without it gets ``export.assembly.default_steps`` (base first, then kit order).
+    def refuse(self, spec, kit) -> None: ...                                # DesignError: `build` writes no such kit
+    def findings(self, spec) -> list: ...                                  # design findings (``core.findings.Finding``)
+    def design_summary(self, spec, kit) -> dict: ...                        # the manifest's "design"
+    def kit_files(self, spec, kit, raw) -> dict: ...                        # name -> bytes: design.yaml (pinned), printer.yaml
+    def plate_margin(self, spec) -> float: ...                              # mm between parts on a plate
+    def check(self, spec, kit, samples=None, progress=None) -> Result: ...  # every check over the motion
+    def trace(self, spec, kit, samples, out, animate=True) -> Trace: ...    # the motion's figures; plots into ``out``
+    def csv(self, trace) -> str: ...                                        # `trace --csv`'s file (starts with csv_header)
+    def trace_text(self, spec, trace, folder) -> str: ...                   # what `trace` prints
+    def bill_text(self, spec, man, dest, seconds) -> str: ...               # what `build` prints (the bill)
+    def check_text(self, spec, result, folder, seconds) -> str: ...         # what `check` prints
+    def report_sections(self, spec, kit, result, trace, files) -> list: ...  # [(title, html)] of the report
+    def subtitle(self, spec) -> str: ...                                    # the report's subtitle
 
-    # Optional: ``animation_motion(spec, kit) -> Motion``, the input the kit's assembly.glb animates
-    # over when it is not ``motion`` (the wrist: its workspace's bend, which the kit decides).
 
-    # Optional (see ``tolerance_hook``): a mechanism that offers `partgen tolerance` defines
-    # tolerance_model(spec, kit, result, accuracy_mm) -> design.tolerance.MarginModel: the margins
-    # of ``result`` (the nominal check of ``kit``) that decide whether it turns, as linear functions
-    # of the printed features' deviations for a printer accuracy of ± accuracy_mm.
+class OptionalHooks(Protocol):
+    """Members a mechanism may define (looked up with ``getattr``); a mechanism without one gets the
+    shared default the caller names. The signature test holds any it defines to these shapes."""
+
+    def assembly_steps(self, spec, kit) -> list:
+        """[(what to do, names of the parts it uses)] in the order a maker puts the kit together
+        (default ``export.assembly.default_steps``: base first, then kit order)."""
+        ...
+
+    def tolerance_model(self, spec, kit, result, accuracy_mm, seated=True):
+        """``design.tolerance.MarginModel``: the margins of ``result`` (the nominal check of ``kit``) as
+        linear functions of the printed features' deviations at ± accuracy_mm; ``seated``: gears where
+        their meshes push them in their bores (False: centred, the worst case). Without it, `tolerance`
+        refuses the kind."""
+        ...
+
+    def tolerance_exact(self, spec, kit, result, model, seated=True):
+        """(task function, shared data) of `tolerance --exact N`: ``fn(shared, seed, index)`` makes one
+        perturbed print of the real geometry and says whether it turns."""
+        ...
+
+    def animation_motion(self, spec, kit) -> Motion:
+        """The input range ``assembly.glb`` animates over, when it is not ``motion``'s."""
+        ...
+
+
+OPTIONAL_HOOKS = ("assembly_steps", "tolerance_model", "tolerance_exact", "animation_motion")
 
 
 TOLERANCE_HOOK = "tolerance_model"

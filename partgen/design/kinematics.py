@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.transforms import rot2
-from .mechanism import Mechanism
+from .mechanism import ChainDesign
 
 __all__ = ["GearPose", "link_angles", "joint_positions", "gear_poses", "mesh_pairs", "clockings", "mesh_phase_error"]
 
@@ -32,12 +32,12 @@ class GearPose:
     angle: float
 
 
-def link_angles(mech: Mechanism, theta: float) -> np.ndarray:
+def link_angles(mech: ChainDesign, theta: float) -> np.ndarray:
     """(n + 1,) rad: α_0 = 0 for the base, then α_j for each link."""
     return np.array([0.0] + [l.speed * theta + l.phase for l in mech.chain.links])
 
 
-def joint_positions(mech: Mechanism, theta: float) -> np.ndarray:
+def joint_positions(mech: ChainDesign, theta: float) -> np.ndarray:
     """(n + 1, 2) mm: J_0 = the ground pivot at the origin, J_j = distal joint of link j (J_n = pen)."""
     a = link_angles(mech, theta)[1:]
     lengths = np.array([l.length for l in mech.chain.links])
@@ -52,7 +52,7 @@ def _turned(angle: float, v) -> tuple[float, float]:
     return (float(x), float(y))
 
 
-def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
+def _raw_poses(mech: ChainDesign, theta: float) -> list[GearPose]:
     """Gear poses without clocking (every gear's tooth 0 on its carrier's +x at θ = 0)."""
     a = link_angles(mech, theta)
     J = joint_positions(mech, theta)
@@ -79,7 +79,7 @@ def _raw_poses(mech: Mechanism, theta: float) -> list[GearPose]:
     return out
 
 
-def mesh_pairs(mech: Mechanism) -> list[tuple[str, str]]:
+def mesh_pairs(mech: ChainDesign) -> list[tuple[str, str]]:
     """Meshing pairs (driver, driven) in the order their clockings are decided."""
     pairs = [("G1", "drive")]
     for s in mech.stages:
@@ -95,7 +95,7 @@ def _phase(pose_a: GearPose, za: int, pose_b: GearPose, zb: int) -> float:
     return (ua + ub - 0.5 + 0.5) % 1.0 - 0.5
 
 
-def clockings(mech: Mechanism) -> dict[str, float]:
+def clockings(mech: ChainDesign) -> dict[str, float]:
     """Tooth-0 clocking of every gear (rad): D_j and G1 are the references (0); each driven gear
     is turned so it interleaves with its driver at θ = 0."""
     teeth = dict(mech.gears)
@@ -108,13 +108,13 @@ def clockings(mech: Mechanism) -> dict[str, float]:
     return clock
 
 
-def gear_poses(mech: Mechanism, theta: float, clock: dict[str, float] | None = None) -> dict[str, GearPose]:
+def gear_poses(mech: ChainDesign, theta: float, clock: dict[str, float] | None = None) -> dict[str, GearPose]:
     """Every gear's pose at crank angle θ, clocked (``clock`` defaults to ``clockings(mech)``)."""
     clock = clockings(mech) if clock is None else clock
     return {p.name: GearPose(p.name, p.carrier, p.centre, p.angle + clock.get(p.name, 0.0)) for p in _raw_poses(mech, theta)}
 
 
-def mesh_phase_error(mech: Mechanism, theta: float, clock: dict[str, float] | None = None) -> dict[tuple[str, str], float]:
+def mesh_phase_error(mech: ChainDesign, theta: float, clock: dict[str, float] | None = None) -> dict[tuple[str, str], float]:
     """For each meshing pair, how far from interleaved it is at θ, in fractions of a pitch."""
     teeth = dict(mech.gears)
     poses = gear_poses(mech, theta, clock)

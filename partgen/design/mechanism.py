@@ -20,10 +20,10 @@ from .drawing import Drawing
 from .drivetrain import (Finding, design_finding, Limits, Stage, choose_stage, eq11_ratios, make_stage, stage_breaches,
                          verify_stage)
 from .gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from .rules import GearRules, check_generable, gear_breaches, hole_breach, mesh_breaches, wall_breach
+from .rules import GearRules, check_generable, gear_breaches, gear_rules, hole_breach, mesh_breaches, wall_breach
 from .synthesis import Chain
 
-__all__ = ["ChainParams", "MechanismInputs", "Mechanism", "synthesize",
+__all__ = ["ChainParams", "MechanismInputs", "ChainDesign", "synthesize",
            "TRIANGLE_BUDGET", "gear_triangles", "auto_module"]
 
 TRIANGLE_BUDGET = 8_000_000  # triangles of all gear solids of a kit: about 2 GB of meshes while building
@@ -82,7 +82,7 @@ class MechanismInputs:
 
 
 @dataclass(frozen=True)
-class Mechanism:
+class ChainDesign:
     chain: Chain
     stages: tuple[Stage, ...]
     G1: GearSpec
@@ -116,7 +116,7 @@ def pitch_diameter_belt(teeth: int, profile: BeltProfile) -> float:
     return _pd(teeth, profile.pitch)
 
 
-def synthesize(inputs: MechanismInputs, params: ChainParams, advise: bool = True) -> Mechanism:
+def synthesize(inputs: MechanismInputs, params: ChainParams, advise: bool = True) -> ChainDesign:
     """Ratios, teeth (chosen or verified), idler placement, the drive pair and the findings.
     ``advise``: a refusal computes the settings that would work (a search turns it off)."""
     links = inputs.chain.links
@@ -159,7 +159,7 @@ def synthesize(inputs: MechanismInputs, params: ChainParams, advise: bool = True
     for g in distinct.values():
         check_generable(g)
     _budget([G1, drive] + [g for s in stages for g in (s.D, s.M, s.G)])
-    return Mechanism(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
+    return ChainDesign(inputs.chain, tuple(stages), G1, drive, drive_centre, tuple(findings),
                      inputs.curve, inputs.scale, inputs.dropped, inputs.teeth is None, inputs.source, (),
                      inputs.chain, inputs.drawing)
 
@@ -167,7 +167,7 @@ def synthesize(inputs: MechanismInputs, params: ChainParams, advise: bool = True
 GEAR_RULES = ("tip-root", "contact-ratio", "involute", "backlash", "tip-width")  # what a module changes
 
 
-def auto_module(inputs: MechanismInputs, params: ChainParams) -> tuple[Mechanism, ChainParams]:
+def auto_module(inputs: MechanismInputs, params: ChainParams) -> tuple[ChainDesign, ChainParams]:
     """``gears.module_mm: auto``: the largest module on the grid (``drivetrain.module_grid``) with which
     the chain synthesizes and every gear and mesh meets the rules `partgen check` holds it to on this
     printer (tip width in lines, tip-to-root, contact ratio, involute, backlash). Returns the
@@ -277,11 +277,6 @@ def kit_findings(params: ChainParams, belts: BeltSettings | None = None) -> list
     return out
 
 
-def gear_rules(params: ChainParams) -> GearRules:
-    """The gear and mesh rules of a kit: its check settings on its printer."""
-    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.line_width)
-
-
 def drive_findings(G1: GearSpec, drive: GearSpec, rules: GearRules) -> list[Finding]:
     """Warnings for the drive pair (teeth given by ``drive.teeth``): the rules it breaks."""
     broken = gear_breaches(G1, rules, f"G1 and the drive gear ({G1.teeth})") + mesh_breaches(
@@ -303,7 +298,7 @@ def _drive(params: ChainParams) -> tuple[GearSpec, GearSpec, tuple[float, float]
     return G1, G1, (a * math.cos(params.drive_angle), a * math.sin(params.drive_angle))
 
 
-def _belt_mechanism(inputs: MechanismInputs, params: ChainParams, ratios, findings) -> Mechanism:
+def _belt_mechanism(inputs: MechanismInputs, params: ChainParams, ratios, findings) -> ChainDesign:
     """Belt stages for every coupled link; a link without room for a tensioner changes length."""
     from dataclasses import replace as _replace
 
@@ -329,5 +324,5 @@ def _belt_mechanism(inputs: MechanismInputs, params: ChainParams, ratios, findin
     G1, drive, drive_centre = _drive(params)
     findings += drive_findings(G1, drive, gear_rules(params)) + kit_findings(params, b)
     chain = Chain(tuple(links), inputs.chain.offset)
-    return Mechanism(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
+    return ChainDesign(chain, (), G1, drive, drive_centre, tuple(findings), inputs.curve, inputs.scale, inputs.dropped,
                      True, inputs.source, tuple(stages), inputs.chain, inputs.drawing)

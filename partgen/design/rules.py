@@ -30,7 +30,7 @@ from . import involute
 from .gearing import GearSpec
 
 __all__ = ["TIP_ROOT_COEFF", "CODES", "GearRules", "Breach", "check_generable", "ToothSystemError", "tip_root_clearance", "contact_ratio", "form_radius",
-           "mate_contact_radius", "mesh_breaches", "gear_breaches", "hole_breach", "wall_breach"]
+           "mate_contact_radius", "mesh_breaches", "gear_breaches", "hole_breach", "wall_breach", "gear_rules"]
 
 TIP_ROOT_COEFF = 0.05  # × module: the least clearance between a tip and its mate's root
 BACKLASH_TOL = 1e-6  # mm: backlash this close to zero is zero, not interference
@@ -211,3 +211,9 @@ def wall_breach(wall: float, min_wall: float) -> Breach | None:
         return Breach("wall", f"a wall of {wall:.2f} mm is under the printer's {min_wall:g} mm (min_wall_lines × "
                       "line_width_mm)", wall, min_wall)
     return None
+
+
+def gear_rules(params) -> GearRules:
+    """The gear and mesh rules of any kit with gears: its check settings (``params.checks``:
+    ``min_contact_ratio``, ``min_tip_width_roads``) on its printer (``params.printer.line_width``, mm)."""
+    return GearRules(params.checks.min_contact_ratio, params.checks.min_tip_width_roads * params.printer.line_width)

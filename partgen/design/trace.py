@@ -15,14 +15,14 @@ from fractions import Fraction
 
 import numpy as np
 
-from .mechanism import Mechanism
+from .mechanism import ChainDesign
 from .synthesis import Chain, Link, links_from_curve, trace
 
 __all__ = ["built_speeds", "built_chain", "Deviation", "deviation", "hausdorff", "directed_hausdorff",
            "nearest_distances", "target_paths"]
 
 
-def built_speeds(mech: Mechanism) -> tuple[Fraction, ...]:
+def built_speeds(mech: ChainDesign) -> tuple[Fraction, ...]:
     """World speed of each link (crank turns: one per cycle) as its gears make it, exact."""
     w = [Fraction(0), Fraction(mech.drive.teeth, mech.G1.teeth)]
     for td, tg in mech.couplings:
@@ -30,13 +30,13 @@ def built_speeds(mech: Mechanism) -> tuple[Fraction, ...]:
     return tuple(w[1:])
 
 
-def built_chain(mech: Mechanism) -> Chain:
+def built_chain(mech: ChainDesign) -> Chain:
     """The chain with the speeds its gears give (lengths and initial angles as assembled)."""
     links = tuple(Link(l.name, float(w), l.length, l.phase) for l, w in zip(mech.chain.links, built_speeds(mech)))
     return Chain(links, mech.chain.offset)
 
 
-def target_paths(mech: Mechanism, theta: np.ndarray) -> dict[str, np.ndarray]:
+def target_paths(mech: ChainDesign, theta: np.ndarray) -> dict[str, np.ndarray]:
     """(n,) complex mm: the full Fourier series of the target curve ("full") and the chain the
     design asks for, with ideal speeds ("pruned")."""
     out = {"pruned": trace(mech.design_chain or mech.chain, theta)}
@@ -107,7 +107,7 @@ def deviation(path: np.ndarray, target: np.ndarray, theta: np.ndarray) -> Deviat
     return Deviation(float(d[k]), float(np.sqrt(np.mean(d**2))), hausdorff(path, target), float(theta[k]))
 
 
-def curve_links(mech: Mechanism) -> tuple[complex, tuple[Link, ...]]:
+def curve_links(mech: ChainDesign) -> tuple[complex, tuple[Link, ...]]:
     """All links of the target curve at print scale (for drawing what was dropped)."""
     if mech.curve is None:
         return mech.chain.offset, mech.chain.links

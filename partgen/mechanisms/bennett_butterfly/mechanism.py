@@ -243,8 +243,6 @@ class BennettButterfly:
     def resolve(self, raw: LoadedDesign) -> BennettParams:
         return resolve_bennett(raw)
 
-    def name(self, spec: BennettParams) -> str:
-        return spec.name
 
     def build(self, spec: BennettParams, progress=None) -> A.BennettKit:
 
@@ -369,7 +367,7 @@ class BennettButterfly:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
 
-    def report_sections(self, spec, kit, result, trace: Trace, files: dict, common: dict) -> list[tuple[str, str]]:
+    def report_sections(self, spec, kit, result, trace: Trace, files: dict) -> list[tuple[str, str]]:
         from ...export import report as R
 
         sections = report_sections(kit, result)

@@ -16,18 +16,18 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ...core.parts import Bore
+from ...core.parts import Bore, Contact
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
-from ...design.mechanism import PEN_BORE_CLEARANCE, Mechanism
+from ...design.mechanism import PEN_BORE_CLEARANCE, ChainDesign
 from .params import KitParams
 from ...errors import DesignError
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part
 from ...geometry.printing import least_support_flip
 
-__all__ = ["Stack", "Contact", "Kit", "build_kit"]
+__all__ = ["Stack", "Kit", "build_kit"]
 
 UP, DOWN = (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)
 
@@ -61,27 +61,13 @@ class Stack:
         return self.layer(j - 1) + self.face + self.gap
 
 
-@dataclass(frozen=True)
-class Contact:
-    """Two parts meant to touch, and how (radial clearances, mm, are design values).
-
-    kind: "running" (turns on it, radial gap = running clearance / 2), "press" (D-fit, gap =
-    press clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh).
-    window: world z-range where the fit is (the bore's length), None for thrust and mesh.
-    """
-
-    a: str
-    b: str
-    kind: str
-    window: tuple[float, float] | None = None
-    radial_gap: float = 0.0
 
 
 @dataclass(frozen=True)
 class Kit(ParamsKit):
     """Parts of a mechanism, and where each one is at any crank angle."""
 
-    mechanism: Mechanism
+    mechanism: ChainDesign
     params: KitParams
     stack: Stack
     parts: tuple[Part, ...]
@@ -122,7 +108,7 @@ class Kit(ParamsKit):
         return out
 
 
-def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: dict | None = None) -> Kit:
+def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: dict | None = None) -> Kit:
     """Build every part of the kit. ``progress(name)`` is called as each part is made.
 
     ``clock_error`` (name -> rad) makes fixed gears with their teeth turned that far off the
@@ -287,7 +273,7 @@ def build_kit(mech: Mechanism, params: KitParams, progress=None, clock_error: di
     return Kit(mech, params, st, tuple(parts), static, clock, contacts)
 
 
-def _contacts(mech: Mechanism, params: KitParams, st: Stack, n_legs: int) -> tuple[Contact, ...]:
+def _contacts(mech: ChainDesign, params: KitParams, st: Stack, n_legs: int) -> tuple[Contact, ...]:
     """Every pair of parts the design means to touch: fits on axles, D-fits, thrust faces, meshes."""
     g, f, t = st.gap, st.face, st.plate
     run, press = params.joints.running_clearance / 2, params.joints.press_clearance / 2
@@ -320,7 +306,7 @@ def _contacts(mech: Mechanism, params: KitParams, st: Stack, n_legs: int) -> tup
     return tuple(out)
 
 
-def _belts(mech: Mechanism):
+def _belts(mech: ChainDesign):
     """The belt settings a belt mechanism was made with (flanges, tensioner): kept on its stages."""
     return mech.belt_stages[0].settings
 

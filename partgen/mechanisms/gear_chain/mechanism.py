@@ -92,8 +92,6 @@ class GearChain:
     def resolve(self, raw: LoadedDesign) -> ChainSpec:
         return resolve_spec(raw)
 
-    def name(self, spec: ChainSpec) -> str:
-        return spec.params.name
 
     def build(self, spec: ChainSpec, progress=None) -> Kit:
         try:
@@ -347,8 +345,7 @@ class GearChain:
         return steps
 
     # --- the report page -------------------------------------------------------------------------
-    def report_sections(self, spec: ChainSpec, kit: Kit, result: Result, trace: Trace, files: dict,
-                        common: dict) -> list[tuple[str, str]]:
+    def report_sections(self, spec: ChainSpec, kit: Kit, result: Result, trace: Trace, files: dict) -> list[tuple[str, str]]:
         """Design, stacking, trace and check sections (the pipeline adds the bill of parts, what to
         buy and the build plates). ``files``: the trace's files (name -> bytes)."""
         import tempfile

@@ -14,7 +14,7 @@ from ...design import curve as curves
 from ...design import drawing
 from ...design.belt import BeltProfile
 from ...design.gearing import ToothSystem
-from ...design.mechanism import BeltSettings, Mechanism, MechanismInputs, auto_module, synthesize
+from ...design.mechanism import BeltSettings, ChainDesign, MechanismInputs, auto_module, synthesize
 from ...design.rules import ToothSystemError
 from ...design.synthesis import Chain, Link, chain_order, links_from_curve, prune
 from ...errors import ConfigError, DesignError
@@ -242,7 +242,7 @@ class ChainSpec:
     """A gear chain ready to build: the synthesized mechanism and the kit's parameters."""
 
     path: Path
-    mechanism: Mechanism
+    mechanism: ChainDesign
     params: KitParams
     printer_path: Path
 

@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.animation import FuncAnimation, PillowWriter  # noqa: E402
 
-from ...design.mechanism import Mechanism  # noqa: E402
+from ...design.mechanism import ChainDesign  # noqa: E402
 from ...design.synthesis import Chain, trace  # noqa: E402
 from ...design.trace import built_chain, target_paths  # noqa: E402
 
@@ -26,14 +26,14 @@ def _joints(chain: Chain, theta: float) -> np.ndarray:
     return np.column_stack([p.real, p.imag])
 
 
-def _curves(mech: Mechanism, n: int = 4000):
+def _curves(mech: ChainDesign, n: int = 4000):
     theta = np.linspace(0, 2 * np.pi, n)
     paths = target_paths(mech, theta)
     built = built_chain(mech)
     return theta, paths, built, trace(built, theta)
 
 
-def trace_figure(mech: Mechanism, stats: dict, png, svg=None, title: str = "") -> None:
+def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "") -> None:
     """Target (full series), the design's chain and the chain as built, links drawn at a few
     crank angles, arrows for the pen's direction, and which way is up."""
     theta, paths, built, pen = _curves(mech)
@@ -101,7 +101,7 @@ def tradeoff_axes(ax, d) -> None:
     ax.legend(fontsize=8)
 
 
-def trace_animation(mech: Mechanism, gif, frames: int = 60, fps: int = 10) -> None:
+def trace_animation(mech: ChainDesign, gif, frames: int = 60, fps: int = 10) -> None:
     """The chain (as built) turning through one cycle, the pen leaving its path behind."""
     theta, paths, built, pen = _curves(mech, 2000)
     fig, ax = plt.subplots(figsize=(5.5, 5.5), dpi=80)

@@ -231,8 +231,7 @@ class GearPair:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
 
-    def report_sections(self, spec: PairSpec, kit: PairKit, result: Result, trace: Trace, files: dict,
-                        common: dict) -> list[tuple[str, str]]:
+    def report_sections(self, spec: PairSpec, kit: PairKit, result: Result, trace: Trace, files: dict) -> list[tuple[str, str]]:
         from ...export import report as R
 
         f = result.figures

@@ -20,13 +20,13 @@ from ...checks.meshing import check_meshes
 from ...checks.motion import prepare, sweep
 from ...checks.printability import check_printability, printed_extents
 from ...core.findings import Finding, Result
-from ...core.parts import Part
+from ...core.parts import Contact, Part
 from ...core.transforms import pose_z
 from ...design import rules
-from ...design.mechanism import gear_rules
+from ...design.rules import gear_rules
 from ...design.gear_train import overlap_ratio
 from ...geometry.measure import intersection
-from .kit import Contact, TrainKit, TrainSpec
+from .kit import TrainKit, TrainSpec
 from .motion import turn_train
 
 __all__ = ["MeshView", "check_train", "sample_thetas", "exact_mesh_overlap"]

@@ -21,7 +21,7 @@ from fractions import Fraction
 import numpy as np
 
 from ...config.loader import LoadedDesign, printer_limits
-from ...core.parts import Bore, Part
+from ...core.parts import Bore, Contact, Part
 from ...core.printer import PrinterLimits
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
@@ -39,7 +39,7 @@ from ...geometry.solid import prisms, slab, union
 from .hubs import Hub, HubError, plan_hub, turning
 from .hubs import sizes_within as hub_sizes_within
 
-__all__ = ["TrainGear", "Shaft", "Mesh", "Contact", "TrainSpec", "TrainKit", "resolve_train", "build_train", "hub_cutters",
+__all__ = ["TrainGear", "Shaft", "Mesh", "TrainSpec", "TrainKit", "resolve_train", "build_train", "hub_cutters",
            "nut_and_rod", "screw_and_nut", "hub_hole", "turning_shaft", "hub_contacts"]
 
 FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
@@ -83,16 +83,6 @@ class Mesh:
     centre_distance: float
 
 
-@dataclass(frozen=True)
-class Contact:
-    """Two parts meant to touch (see checks/fits.py): ``running``, ``press`` or ``thrust``; the world
-    z-window of the fit and its radial clearance (mm)."""
-
-    a: str
-    b: str
-    kind: str
-    window: tuple[float, float] | None = None
-    radial_gap: float = 0.0
 
 
 @dataclass(frozen=True)

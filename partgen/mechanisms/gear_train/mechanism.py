@@ -80,7 +80,7 @@ class GearTrain:
     def findings(self, spec: TrainSpec) -> list[Finding]:
         """What `build` warns about (the rules `check` fails on) and notes (undercut gears)."""
         from ...design import rules
-        from ...design.mechanism import gear_rules
+        from ...design.rules import gear_rules
 
         gr = gear_rules(spec)
         out = []
@@ -270,8 +270,7 @@ class GearTrain:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
 
-    def report_sections(self, spec: TrainSpec, kit: TrainKit, result: Result, trace: Trace, files: dict,
-                        common: dict) -> list[tuple[str, str]]:
+    def report_sections(self, spec: TrainSpec, kit: TrainKit, result: Result, trace: Trace, files: dict) -> list[tuple[str, str]]:
         from ...export import report as R
 
         if isinstance(spec, RackSpec):

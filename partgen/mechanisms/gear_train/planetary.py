@@ -33,7 +33,7 @@ from ...checks.motion import prepare, sweep
 from ...checks.printability import check_printability, printed_extents
 from ...config.loader import LoadedDesign, printer_limits
 from ...core.findings import Finding, Result
-from ...core.parts import Part
+from ...core.parts import Contact, Part
 from ...core.printer import PrinterLimits
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
@@ -51,7 +51,7 @@ from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import prisms, slab, union
 from .hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
-from .kit import (FEATURE_TOL, Contact, hub_contacts, hub_cutters, hub_hole, hubbed_gear, screw_and_nut,
+from .kit import (FEATURE_TOL, hub_contacts, hub_cutters, hub_hole, hubbed_gear, screw_and_nut,
                   turning_shaft)
 
 __all__ = ["PlanetarySpec", "PlanetaryKit", "resolve_planetary", "build_planetary", "check_planetary",

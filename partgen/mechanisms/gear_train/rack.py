@@ -28,14 +28,14 @@ from ...checks.motion import prepare, sweep
 from ...checks.printability import check_printability
 from ...config.loader import LoadedDesign, printer_limits
 from ...core.findings import Finding, Result
-from ...core.parts import Part
+from ...core.parts import Contact, Part
 from ...core.printer import PrinterLimits
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design import rules
 from ...design.gearing import GearSpec, ToothSystem, make_gear
 from ...checks.settings import CheckSettings
-from ...design.mechanism import gear_rules
+from ...design.rules import gear_rules
 from ...design.rack import rack_contact_ratio, rack_outline, rack_tip_width
 from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError
@@ -45,7 +45,7 @@ from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import extrude, mesh_arrays, prisms, slab, union
 from .hubs import HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
-from .kit import FEATURE_TOL, Contact, hub_contacts, hubbed_gear, screw_and_nut, turning_shaft
+from .kit import FEATURE_TOL, hub_contacts, hubbed_gear, screw_and_nut, turning_shaft
 
 __all__ = ["RackSpec", "RackKit", "resolve_rack", "build_rack", "check_rack", "turn_rack"]
 

@@ -50,8 +50,6 @@ class Wrist:
         spec = resolve_wrist(raw)
         return spec
 
-    def name(self, spec: WristSpec) -> str:
-        return spec.name
 
     def animation_motion(self, spec: WristSpec, kit: WristKit) -> Motion:
         """The assembly's animation bends the pair over its workspace: θ from 0 to ``theta_max``."""
@@ -176,8 +174,7 @@ class Wrist:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
 
-    def report_sections(self, spec: WristSpec, kit: WristKit, result: Result, trace: Trace, files: dict,
-                        common: dict) -> list[tuple[str, str]]:
+    def report_sections(self, spec: WristSpec, kit: WristKit, result: Result, trace: Trace, files: dict) -> list[tuple[str, str]]:
         from ...export import report as R
         from ...export.render import render
         from ...geometry.solid import mesh_arrays
