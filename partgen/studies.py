@@ -64,7 +64,7 @@ def modelled_kinds() -> list[str]:
 def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None = None, progress: bool = False,
                   kit=None, seated: bool = True):
     """(model, nominal check result, seconds of the check): the kit built once (or ``kit``), checked
-    once (``progress``: a progress line over the check's crank angles, on a terminal). ``seated``:
+    once (``progress``: a progress line over the check's samples of the motion, on a terminal). ``seated``:
     the gears sit where their meshes push them in their bores (docs/tolerance.md); ``worst_model``
     gives the same check's model with every gear centred."""
     hook = tolerance_hook(loaded.mechanism)
@@ -73,7 +73,7 @@ def nominal_model(loaded, accuracy_mm: float | None, check_samples: int | None =
                           f"(`partgen tolerance` runs on kind: {', '.join(modelled_kinds())})")
     kit = kit if kit is not None else pipeline.make_kit(loaded)
     t0 = time.perf_counter()
-    bar = C.Counter("nominal check, crank angles", 1, progress)
+    bar = C.Counter(f"nominal check, {loaded.mechanism.motion.label}", 1, progress)
 
     def angles(done: int, total: int) -> None:
         bar.total = total

@@ -77,8 +77,9 @@ def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
     return lo
 
 
-def check_meshes(kit: Kit, thetas: np.ndarray) -> tuple[list[Finding], list[dict]]:
-    """Findings and one row of figures per meshing pair."""
+def check_meshes(kit: Kit, thetas: np.ndarray, label: str = "motion parameter") -> tuple[list[Finding], list[dict]]:
+    """Findings and one row of figures per meshing pair (``label``: what the mechanism calls the
+    motion parameter ``thetas`` samples, e.g. the angle of its input)."""
     settings = kit.params.checks
     mesh_rules = gear_rules(kit.params)
     outlines = {}
@@ -134,7 +135,7 @@ def check_meshes(kit: Kit, thetas: np.ndarray) -> tuple[list[Finding], list[dict
             # teeth that overlap where the pair breaks a rule (a tip in its mate's fillet) overlap
             # because of it: the finding carries that rule
             cause = next((b.rule for b in broken if b.rule in ("involute", "tip-root", "backlash")), "")
-            findings.append(Finding("mesh", "fail", f"{label}: teeth overlap by {worst[0]:.3f} mm³ at crank angle "
+            findings.append(Finding("mesh", "fail", f"{label}: teeth overlap by {worst[0]:.3f} mm³ at {label} "
                                     f"{math.degrees(thetas[n]):.1f}° (centre distance {a_op:.3f} mm, design "
                                     f"{a_design:.3f} mm)" + (f", from the {cause} rule broken below" if cause else ""),
                                     names, float(thetas[n]), worst[0], "mm3", worst[2], rule=cause))

@@ -1,4 +1,4 @@
-"""Interference and clearance of every pair of parts over the crank's motion.
+"""Interference and clearance of every pair of parts over the mechanism's motion.
 
 Broad phase: every part is a stack of z-prisms (``geometry.measure.slabs``), and parts only turn
 about z and move in xy, so two parts can meet only where their slabs share z. For those slab
@@ -49,12 +49,12 @@ def prepare(kit: Kit, twisted: frozenset[str] | set[str] = frozenset(), grow: fl
 
 
 def sample_angles(n: int) -> np.ndarray:
-    """n crank angles over one full cycle (one crank turn), rad."""
+    """n values of the motion parameter over one full cycle (one turn), rad."""
     return 2 * np.pi * np.arange(n) / n
 
 
 def pose_array(kit: Kit, names: list[str], thetas: np.ndarray) -> np.ndarray:
-    """(N, P, 4, 4) poses of the named parts at each crank angle."""
+    """(N, P, 4, 4) poses of the named parts at each value of the motion parameter."""
     out = np.empty((len(thetas), len(names), 4, 4))
     for i, t in enumerate(thetas):
         poses = kit.poses(float(t))
@@ -103,8 +103,9 @@ def _apart(tri, rel: np.ndarray, reach: float) -> np.ndarray:
 
 
 def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=None,
-          prune: bool = False) -> tuple[list[Finding], dict]:
-    """Interference and clearance findings over the sampled crank angles, and figures. ``prune``:
+          prune: bool = False, label: str = "motion parameter") -> tuple[list[Finding], dict]:
+    """Interference and clearance findings over the sampled values of the motion parameter (``label``:
+    what the mechanism calls it, e.g. the angle of its input), and figures. ``prune``:
     leave out of the narrow phase the slab pairs that turn about one axis and whose radii about it
     stay ``reach`` apart (``_apart``): the same findings, without measuring gaps that cannot matter
     (the figure ``closest_approach`` then names the closest of the pairs measured)."""
@@ -218,7 +219,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
             continue
         findings.append(Finding(
             "interference", "fail",
-            f"{names[a]} and {names[b]} overlap by {vol:.3f} mm³ at crank angle {math.degrees(thetas[w.n_vol]):.1f}° "
+            f"{names[a]} and {names[b]} overlap by {vol:.3f} mm³ at {label} {math.degrees(thetas[w.n_vol]):.1f}° "
             f"(overlapping at {w.angles} of {len(thetas)} sampled angles)",
             (names[a], names[b]), float(thetas[w.n_vol]), vol, "mm3",
             tuple(centre) if centre is not None else w.where2d))
@@ -243,7 +244,7 @@ def sweep(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, progress=N
         if w.gap < settings.min_clearance - CLEARANCE_SLACK:
             findings.append(Finding(
                 "clearance", "fail",
-                f"{names[a]} and {names[b]} come within {w.gap:.3f} mm at crank angle "
+                f"{names[a]} and {names[b]} come within {w.gap:.3f} mm at {label} "
                 f"{math.degrees(thetas[w.n_gap]):.1f}° (needs {settings.min_clearance:g} mm)",
                 (names[a], names[b]), float(thetas[w.n_gap]), w.gap, "mm", w.where_gap))
     if zsep:

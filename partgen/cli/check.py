@@ -17,7 +17,7 @@ def add_parser(sub) -> None:
     p = sub.add_parser("check", help="check a design or a built kit over its whole motion")
     p.add_argument("target", help="design YAML, or a kit folder written by `partgen build`")
     p.add_argument("--samples", type=bounded_int(4, 10_000), default=None,
-                   help="crank angles over one cycle, 4 to 10,000 (default: the config's checks.samples)")
+                   help="samples of the motion over one cycle, 4 to 10,000 (default: the config's checks.samples)")
     p.add_argument("--no-plates", action="store_true", help="lay out the build plates but write nothing")
     p.add_argument("--max-jam-probability", type=_unit_float, default=None, metavar="P",
                    help="fail (exit 1) when the quick tolerance study's P(jam) is above P")

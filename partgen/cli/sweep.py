@@ -23,7 +23,7 @@ def add_parser(sub) -> None:
     p.add_argument("--accuracy-mm", type=_accuracy, default=None, help="± printer accuracy for --tolerance-samples")
     p.add_argument("--seed", type=bounded_int(0, 2 ** 63 - 1), default=0, help="random seed (default 0)")
     p.add_argument("--check-samples", type=bounded_int(4, 10_000), default=None,
-                   help="crank angles of each point's check (default: the config's checks.samples)")
+                   help="samples of the motion in each point's check (default: the config's checks.samples)")
     add_common_options(p, "output folder (default out/<name>/sweep)")
     add_workers_options(p)
     p.set_defaults(run=run)

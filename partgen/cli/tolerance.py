@@ -48,7 +48,7 @@ def add_parser(sub) -> None:
                    help="± accuracy of a printed dimension, 3σ (default: the printer profile's xy_accuracy_mm)")
     p.add_argument("--seed", type=bounded_int(0, 2 ** 63 - 1), default=0, help="random seed (default 0)")
     p.add_argument("--check-samples", type=bounded_int(4, 10_000), default=None,
-                   help="crank angles of the nominal check (default: the config's checks.samples)")
+                   help="samples of the motion in the nominal check (default: the config's checks.samples)")
     p.add_argument("--max-jam-probability", type=_unit_float, default=None, metavar="P",
                    help="exit 1 when the probability that the kit jams is above P")
     p.add_argument("--chunk", type=bounded_int(1, 10_000_000), default=None,

@@ -107,13 +107,13 @@ def check_train(kit: TrainKit, samples: int | None = None, progress=None) -> Res
     # exactly in 3-D, and the meshes themselves below
     geo = prepare(kit, {f"gears{g.shaft}" for g in s.gears if g.hand}, s.system.chord_tolerance)
     t1 = time.perf_counter()
-    found, motion = sweep(kit, geo, thetas, progress)
+    found, motion = sweep(kit, geo, thetas, progress, label="input angle")
     meshing_parts = {frozenset((f"gears{s.gear(m.driver).shaft}", f"gears{s.gear(m.driven).shaft}")) for m in s.meshes}
     # meshing teeth come within their backlash by design: their clearance is the mesh check's
     dropped = [f for f in found if f.check == "clearance" and frozenset(f.parts) in meshing_parts]
     res.add(*[f for f in found if f not in dropped])
     t2 = time.perf_counter()
-    found, meshes = check_meshes(view, thetas)
+    found, meshes = check_meshes(view, thetas, "input angle")
     res.add(*found)
     t3 = time.perf_counter()
     found, fits = check_fits(kit, geo, thetas)

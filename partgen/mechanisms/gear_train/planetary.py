@@ -617,12 +617,12 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
         if gear.undercut:
             res.add(Finding("design", "info", f"{name} ({gear.teeth} teeth) is undercut", (name,)))
     geo = prepare(kit)
-    found, motion = sweep(kit, geo, thetas, progress, prune=True)
+    found, motion = sweep(kit, geo, thetas, progress, prune=True, label="input angle")
     meshing = {frozenset(("sun", f"planet{i}")) for i in range(N)} | {frozenset((f"planet{i}", "frame_bottom"))
                                                                      for i in range(N)}
     dropped = [x for x in found if x.check == "clearance" and frozenset(x.parts) in meshing]
     res.add(*[x for x in found if x not in dropped])
-    found, meshes = check_meshes(_SunPlanetView(kit), thetas)
+    found, meshes = check_meshes(_SunPlanetView(kit), thetas, "input angle")
     res.add(*found)
     found, fits = check_fits(kit, geo, thetas)
     res.add(*found)

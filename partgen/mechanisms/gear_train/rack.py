@@ -321,7 +321,7 @@ def check_rack(kit: RackKit, samples: int | None = None, progress=None) -> Resul
     if p.undercut:
         res.add(Finding("design", "info", f"the pinion ({p.teeth} teeth) is undercut", ("pinion",)))
     geo = prepare(kit)
-    found, motion = sweep(kit, geo, thetas, progress)
+    found, motion = sweep(kit, geo, thetas, progress, label="input angle")
     dropped = [x for x in found if x.check == "clearance" and frozenset(x.parts) == {"pinion", "rack"}]
     res.add(*[x for x in found if x not in dropped])
     found, fits = check_fits(kit, geo, thetas)
