@@ -161,3 +161,26 @@ def test_bad_input_names_the_key(tmp_path, capsys, change, key, fragment):
     err = capsys.readouterr().err
     assert key in err and fragment in err and "Traceback" not in err, err
     assert not dest.exists()
+
+
+def test_a_60_degree_pair_meshes_with_its_designed_backlash(tmp_path):
+    """Shafts at 60° (30° + 30°): the same model, another frame; the blocks stand clear of the slanted
+    gear (the check's frame test) and the backlash measured in 3-D is the designed one."""
+    from partgen import pipeline
+
+    d = yaml.safe_load(CFG.read_text())
+    d["shaft_angle_deg"], d["gears"]["helix_angle_deg"] = 60.0, [30.0, 30.0]
+    p = tmp_path / "ch60.yaml"
+    p.write_text(yaml.safe_dump(d, sort_keys=False))
+    spec = pipeline.load(p).spec
+    kit = build_crossed(spec)
+    assert spec.pair.shaft_angle == pytest.approx(math.radians(60))
+    assert mesh_overlaps(kit, 2).max() == 0.0
+    c = contact_angles(kit, [0.0], 1e-5)
+    backlash = float(c["ahead"][0] - c["behind"][0]) * spec.pair.pitch_radius(1)
+    assert MECHANISM.designed_backlash(spec) == pytest.approx(0.2)
+    assert 0.2 <= backlash <= 0.206
+    from partgen.geometry.measure import intersection
+
+    P = kit.poses(0.3)
+    assert intersection(kit.part("gear2").solid, P["gear2"], kit.part("base").solid, P["base"])[0] == 0.0

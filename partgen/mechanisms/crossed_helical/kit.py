@@ -89,15 +89,28 @@ class CrossedSpec:
         """(4, 4) world-from-local pose of gear 2 turned ``angle`` about its axis."""
         return pose(self.pair.frame2() @ rot_z(angle), (self.centre_distance, 0.0, self.z_c))
 
+    @property
+    def block_distance(self) -> float:
+        """How far along gear 2's axis each block's middle is from gear 2's: the blocks' faces are
+        planes y = const, and gear 2 (a disc of its tip radius and face width, square to u2) reaches
+        b/2 sin Σ + r_a |cos Σ| along y; each face stands the axial gap beyond that."""
+        return _block_distance(self.pair.shaft_angle, self.face_width[1], self.gear2.tip_radius, self.gap,
+                               self.block_thickness)
+
     def block_centres(self) -> list[np.ndarray]:
         """Where gear 2's pin passes through the middle of each block (world)."""
-        d = self.face_width[1] / 2 + self.gap + self.block_thickness / 2
+        d = self.block_distance
         c = np.array([self.centre_distance, 0.0, self.z_c])
         return [c - d * self.pair.axis2, c + d * self.pair.axis2]
 
     @property
     def pin_length(self) -> float:
-        return self.face_width[1] + 2 * self.gap + 2 * self.block_thickness + 2.0  # 1 mm proud of each block
+        """Through both blocks (their thickness along the slanted axis) and 1 mm proud of each."""
+        return 2 * (self.block_distance + self.block_thickness / (2 * math.sin(self.pair.shaft_angle))) + 2.0
+
+
+def _block_distance(sigma: float, face: float, tip: float, gap: float, thickness: float) -> float:
+    return (face / 2 * math.sin(sigma) + tip * abs(math.cos(sigma)) + gap + thickness / 2) / math.sin(sigma)
 
 
 def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
@@ -143,7 +156,9 @@ def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
     # gear 2's lowest point: its tip circle tilted with its axis, and its face's corners
     drop2 = gears[1].tip_radius * math.sin(s) + b2 / 2 * abs(math.cos(s))
     block_reach = radii[1] + press / 2 + d.frame.block_wall_mm  # the block's material under the pin
-    z_c = max(gap + b1 / 2, gap + drop2, block_reach + gap)
+    # the lower block's hole keeps a block wall of material above the base
+    lower = _block_distance(s, b2, gears[1].tip_radius, gap, d.frame.block_thickness_mm) * abs(math.cos(s))
+    z_c = max(gap + b1 / 2, gap + drop2, block_reach + gap + lower)
     spec = CrossedSpec(d.name, pair, gears[0], gears[1], (b1, b2), radii, running, press, gap, d.frame.base_thickness_mm,
                        d.frame.margin_mm, d.frame.block_wall_mm, d.frame.block_thickness_mm, z_c, d.checks.samples,
                        d.checks.plate_margin_mm, d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p),
