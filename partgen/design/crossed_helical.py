@@ -35,7 +35,7 @@ import numpy as np
 
 from .gear_train import Transverse, transverse_system, twist_over
 
-__all__ = ["CrossedPair", "crossed_pair"]
+__all__ = ["CrossedPair", "crossed_pair", "efficiency", "friction_angle", "ThreadSpec"]
 
 
 @dataclass(frozen=True)
@@ -101,8 +101,111 @@ def crossed_pair(teeth: tuple[int, int], normal_module: float, normal_pressure_a
     angle whose cosine leaves no transverse system."""
     b1, b2 = helix1, shaft_angle - helix1
     for b in (b1, b2):
-        if not abs(b) < math.radians(75):
-            raise ValueError(f"a helix angle of {math.degrees(b):.1f}° (at most 75°)")
+        if not abs(b) < math.radians(85) + 1e-12:
+            raise ValueError(f"a helix angle of {math.degrees(b):.1f}° (at most 85°)")
     systems = tuple(transverse_system(normal_module, normal_pressure_angle, abs(b), "normal", ha, hf, rho)
                     for b in (b1, b2))
     return CrossedPair((int(teeth[0]), int(teeth[1])), normal_module, normal_pressure_angle, (b1, b2), systems)
+
+
+def efficiency(pair: CrossedPair, friction: float, backwards: bool = False) -> float:
+    """Efficiency of the mesh with gear 1 driving (``backwards``: gear 2 driving gear 1) for a
+    Coulomb friction coefficient ``friction`` sliding along the teeth: with the friction angle
+    φ' = atan(μ / cos α_n) (the normal pressure angle wedges the contact),
+    η = cos β_1 cos(β_2 + φ') / (cos β_2 cos(β_1 − φ')) (a worm: β_1 = 90° − γ, β_2 = γ gives
+    tan γ / tan(γ + φ')), and backwards the roles swap. ≤ 0: the mesh locks (cannot be driven)."""
+    phi = math.atan(friction / math.cos(pair.normal_pressure_angle))
+    b1, b2 = (abs(pair.helix[1]), abs(pair.helix[0])) if backwards else (abs(pair.helix[0]), abs(pair.helix[1]))
+    return math.cos(b1) * math.cos(b2 + phi) / (math.cos(b2) * math.cos(b1 - phi))
+
+
+def friction_angle(pair: CrossedPair, friction: float) -> float:
+    return math.atan(friction / math.cos(pair.normal_pressure_angle))
+
+
+@dataclass(frozen=True)
+class ThreadSpec:
+    """Gear 1 of a pair whose transverse section the rack generator does not make (1–3 starts, or a
+    transverse pressure angle of 45° and more: a worm): a ZI worm, the involute helicoid, whose
+    transverse section is the involute of its base circle r_b = r_p cos α_t from the root (or the
+    base circle, below which the flank runs radially to the root) to the tip. Same numbers as a
+    ``GearSpec`` (mm, rad, transverse ``system``)."""
+
+    teeth: int
+    system: object  # gearing.ToothSystem (transverse)
+    profile_shift: float = 0.0
+    undercut: bool = False
+
+    @property
+    def module(self) -> float:
+        return self.system.module
+
+    @property
+    def pitch_radius(self) -> float:
+        return self.system.module * self.teeth / 2
+
+    @property
+    def base_radius(self) -> float:
+        return self.pitch_radius * math.cos(self.system.pressure_angle)
+
+    @property
+    def tip_radius(self) -> float:
+        return self.pitch_radius + self.system.addendum_coeff * self.module
+
+    @property
+    def root_radius(self) -> float:
+        return self.pitch_radius - self.system.dedendum_coeff * self.module
+
+    @property
+    def tooth_thickness(self) -> float:
+        """Transverse arc thickness at the reference pitch circle, thinning included, mm."""
+        return math.pi * self.module / 2 - self.system.backlash_per_gear
+
+    def flank_angle(self, r) -> np.ndarray:
+        """Polar angle (rad) of the upper flank at radius r from the tooth's centre line (the lower: −)."""
+        rb, rp = self.base_radius, self.pitch_radius
+        a = self.system.pressure_angle
+        psi_b = self.tooth_thickness / (2 * rp) + (math.tan(a) - a)
+        r = np.maximum(np.asarray(r, dtype=float), rb)
+        t = np.sqrt(np.maximum(r * r - rb * rb, 0.0)) / rb
+        return psi_b - (t - np.arctan(t))
+
+    def section(self, tol: float) -> np.ndarray:
+        """(n, 2) mm counter-clockwise: the transverse section (root arcs, flanks, tip arcs).
+        ValueError when the tooth comes to a point or the thread fills its space at the root."""
+        z, ra, rr, rb = self.teeth, self.tip_radius, self.root_radius, self.base_radius
+        if rr <= 0:
+            raise ValueError(f"the root radius {rr:.3f} mm is not above the axis")
+        psi_a = float(self.flank_angle(ra))
+        psi_r = float(self.flank_angle(max(rr, rb)))
+        if psi_a <= 0:
+            raise ValueError(f"pointed thread: {2 * ra * psi_a:.3f} mm at the tip")
+        if psi_r >= math.pi / z:
+            raise ValueError("the thread fills its space at the root")
+
+        def arc(r: float, a0: float, a1: float) -> np.ndarray:
+            n = max(2, math.ceil(abs(a1 - a0) / (2 * math.acos(max(1 - tol / r, -1.0)))) + 1)
+            a = np.linspace(a0, a1, n)
+            return np.column_stack([r * np.cos(a), r * np.sin(a)])
+
+        lo = max(rr, rb)
+        # the involute's roll t (r = r_b √(1 + t²)): its radius of curvature is r_b t, so a chord of arc
+        # length Δs = r_b t Δt sags Δs² / (8 r_b t) — steps Δt = 0.9 √(8 tol / (r_b t)) from the lower end
+        t_lo, t_a = math.sqrt(max(lo * lo - rb * rb, 0.0)) / rb, math.sqrt(ra * ra - rb * rb) / rb
+        ts = [t_lo]
+        while ts[-1] < t_a:
+            ts.append(min(t_a, ts[-1] + 0.9 * math.sqrt(8 * tol / (rb * max(ts[-1], 1e-3)))))
+        rs = rb * np.sqrt(1 + np.asarray(ts) ** 2)
+        ang = self.flank_angle(rs)
+        upper = np.column_stack([rs * np.cos(ang), rs * np.sin(ang)])  # root (or base) → tip
+        if rr < rb:  # radial below the base circle
+            upper = np.vstack([[rr * math.cos(psi_r), rr * math.sin(psi_r)], upper])
+        # counter-clockwise: root arc, lower flank root → tip, tip arc, upper flank tip → root, root arc
+        tooth = np.vstack([arc(rr, -math.pi / z, -psi_r)[:-1], upper * np.array([1.0, -1.0]),
+                           arc(ra, -psi_a, psi_a)[1:-1], upper[::-1], arc(rr, psi_r, math.pi / z)[1:-1]])
+        rot = 2 * math.pi * np.arange(z) / z
+        pts = np.concatenate([np.column_stack([np.cos(t) * tooth[:, 0] - np.sin(t) * tooth[:, 1],
+                                               np.sin(t) * tooth[:, 0] + np.cos(t) * tooth[:, 1]]) for t in rot])
+        keep = np.ones(len(pts), dtype=bool)
+        keep[1:] = np.hypot(*np.diff(pts, axis=0).T) > 1e-9
+        return pts[keep]

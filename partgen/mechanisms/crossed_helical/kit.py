@@ -20,11 +20,11 @@ from ...config.loader import LoadedDesign, printer_fit, printer_limits
 from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose, pose_z, rot_z
-from ...design.crossed_helical import CrossedPair, crossed_pair
+from ...design.crossed_helical import CrossedPair, ThreadSpec, crossed_pair
 from ...design.gearing import GearSpec, ToothSystem
 from ...design.rules import ToothSystemError, check_generable
 from ...errors import ConfigError
-from ...geometry.helical import centred_helical, cylinder_along
+from ...geometry.helical import centred_helical, centred_thread, cylinder_along
 from ...geometry.outline import circle
 from ...geometry.printing import least_support_flip
 from ...geometry.solid import extrude, union
@@ -32,11 +32,21 @@ from ...geometry.solid import extrude, union
 __all__ = ["CrossedSpec", "CrossedKit", "resolve_crossed", "build_crossed", "gear_spec"]
 
 
-def gear_spec(pair: CrossedPair, i: int, backlash: float, tol: float) -> GearSpec:
-    """Gear i's transverse GearSpec (unshifted: the pair runs at r_1 + r_2)."""
+WORM_PRESSURE_ANGLE = math.radians(40.0)  # transverse, at and above it gear 1 is a worm's thread
+
+
+def is_worm(pair: CrossedPair, i: int = 0) -> bool:
+    """Gear i is a worm (its section the ZI thread's, not the rack generator's): under 4 teeth
+    (starts), or a transverse pressure angle of 40° or more."""
+    return pair.teeth[i] < 4 or pair.systems[i].pressure_angle >= WORM_PRESSURE_ANGLE
+
+
+def gear_spec(pair: CrossedPair, i: int, backlash: float, tol: float) -> GearSpec | ThreadSpec:
+    """Gear i's transverse GearSpec (unshifted: the pair runs at r_1 + r_2), or a worm's ThreadSpec."""
     T = pair.systems[i]
-    return GearSpec(pair.teeth[i], ToothSystem(T.module, T.pressure_angle, T.addendum_coeff, T.dedendum_coeff,
-                                               T.cutter_tip_coeff, backlash, 0.0, tol), 0.0)
+    system = ToothSystem(T.module, T.pressure_angle, T.addendum_coeff, T.dedendum_coeff, T.cutter_tip_coeff, backlash,
+                         0.0, tol)
+    return ThreadSpec(pair.teeth[i], system) if is_worm(pair, i) else GearSpec(pair.teeth[i], system, 0.0)
 
 
 @dataclass(frozen=True)
@@ -45,7 +55,7 @@ class CrossedSpec:
 
     name: str
     pair: CrossedPair
-    gear1: GearSpec
+    gear1: GearSpec | ThreadSpec  # a ThreadSpec: gear 1 is a ZI worm
     gear2: GearSpec
     face_width: tuple[float, float]
     shaft_radius: tuple[float, float]  # gear 1's post, gear 2's pin
@@ -58,6 +68,7 @@ class CrossedSpec:
     block_thickness: float
     z_c: float
     samples: int
+    friction: float
     plate_margin: float
     density: float
     material: str
@@ -129,6 +140,12 @@ def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
     tol = g.chord_tolerance_mm
     gears = [gear_spec(pair, i, g.backlash_per_gear_mm, tol) for i in range(2)]
     for i, gear in enumerate(gears):
+        if isinstance(gear, ThreadSpec):
+            try:
+                gear.section(tol)
+            except ValueError as e:
+                raise ConfigError(loaded.path, "gears.helix_angle_deg", f"gear 1's worm thread cannot be made: {e}") from None
+            continue
         try:
             check_generable(gear)
         except ToothSystemError as e:
@@ -161,7 +178,7 @@ def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
     z_c = max(gap + b1 / 2, gap + drop2, block_reach + gap + lower)
     spec = CrossedSpec(d.name, pair, gears[0], gears[1], (b1, b2), radii, running, press, gap, d.frame.base_thickness_mm,
                        d.frame.margin_mm, d.frame.block_wall_mm, d.frame.block_thickness_mm, z_c, d.checks.samples,
-                       d.checks.plate_margin_mm, d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p),
+                       d.checks.friction_coefficient, d.checks.plate_margin_mm, d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p),
                        tol)
     # the blocks must clear gear 1's tip cylinder
     for c in spec.block_centres():
@@ -203,7 +220,10 @@ def build_crossed(s: CrossedSpec, progress=None) -> CrossedKit:
     ftol = max(tol, 0.005)
     # gear 1: the helical teeth and a collar down to the axial gap above the base
     say("gear1")
-    g1 = centred_helical(s.gear1, b1, pair.twist(0, b1), r1s + s.running / 2, tol)
+    if isinstance(s.gear1, ThreadSpec):
+        g1 = centred_thread(s.gear1.section(tol), s.gear1.tip_radius, b1, pair.twist(0, b1), r1s + s.running / 2, tol)
+    else:
+        g1 = centred_helical(s.gear1, b1, pair.twist(0, b1), r1s + s.running / 2, tol)
     low = s.gap - s.z_c  # the collar's bottom, local
     if low < -b1 / 2 - 1e-9:
         collar = extrude(circle(s.hub_radius, ftol).difference(circle(r1s + s.running / 2, ftol, hole=True)),
@@ -236,7 +256,7 @@ def build_crossed(s: CrossedSpec, progress=None) -> CrossedKit:
                  Bore(f"block{k + 1}", tuple(float(v) for v in (c - (s.block_thickness / 2 + 0.5) * u)),
                       tuple(float(v) for v in u), 2 * r2s, s.block_thickness + 1.0)
                  for k, c in enumerate(s.block_centres()))),
-             Part("gear1", "gear", g1, gear=s.gear1,
+             Part("gear1", "gear", g1, gear=s.gear1 if isinstance(s.gear1, GearSpec) else None,
                   bores=(Bore("post", (0.0, 0.0, low), (0.0, 0.0, 1.0), 2 * r1s, b1 / 2 - low),)),
              Part("gear2", "gear", g2, gear=s.gear2,
                   bores=(Bore("pin", (0.0, 0.0, -b2 / 2), (0.0, 0.0, 1.0), 2 * r2s, b2),)),

@@ -23,8 +23,9 @@ from ...core.transforms import rot_z
 from ...errors import DesignError
 from ...export.report import figure_png
 from ...geometry.measure import intersection, min_gap, oversize
-from ...geometry.helical import sector_prism
-from .kit import CrossedKit, CrossedSpec, build_crossed, resolve_crossed
+from ...geometry.helical import cylinder_along
+from ...design.crossed_helical import efficiency, friction_angle
+from .kit import CrossedKit, CrossedSpec, build_crossed, is_worm, resolve_crossed
 from .schema import CrossedHelicalDesign
 
 __all__ = ["CrossedHelical", "MECHANISM", "mesh_overlaps", "contact_angles"]
@@ -34,16 +35,15 @@ VOLUME_EPS = 1e-9  # mm³: below this an intersection is the boolean's rounding,
 
 def _near_mesh(kit: CrossedKit, theta: float):
     """(gear 1 cut, its pose, gear 2 cut, its nominal pose) at gear 1's turn ``theta``: each gear
-    cut to the teeth round the pitch point (its local angle there ± half the face's twist ± three pitches)."""
+    cut to the other's tip cylinder (0.5 mm larger, 1 mm longer), the only place they can touch."""
     s = kit.spec
     P = kit.poses(theta)
     out = []
-    for i, name in enumerate(("gear1", "gear2")):
-        g = (s.gear1, s.gear2)[i]
-        b = s.face_width[i]
-        turn = theta if i == 0 else float(s.angle2(theta))
-        half = abs(s.pair.twist(i, b)) / 2 + 3 * 2 * math.pi / g.teeth
-        cut = kit.part(name).solid ^ sector_prism(g.tip_radius + 1.0, -turn, min(half, math.pi), b)
+    for i, (name, other) in enumerate((("gear1", "gear2"), ("gear2", "gear1"))):
+        j = 1 - i
+        g = (s.gear1, s.gear2)[j]
+        local = np.linalg.inv(P[name]) @ P[other]
+        cut = kit.part(name).solid ^ cylinder_along(g.tip_radius + 0.5, s.face_width[j] + 1.0, 0.05, local)
         out += [cut, P[name]]
     return out
 
@@ -146,7 +146,28 @@ class CrossedHelical:
                 "tip_diameter_mm": [r6(2 * spec.gear1.tip_radius), r6(2 * spec.gear2.tip_radius)],
                 "centre_distance_mm": r6(spec.centre_distance), "ratio": f"{p.teeth[1]}/{p.teeth[0]}",
                 "face_width_mm": list(spec.face_width), "shaft_height_mm": r6(spec.z_c),
-                "sliding_per_rolling": r6(p.sliding_speed() / p.pitch_radius(0))}
+                "sliding_per_rolling": r6(p.sliding_speed() / p.pitch_radius(0)), **self.locking(spec)}
+
+    def locking(self, spec: CrossedSpec) -> dict:
+        """Efficiency both ways and the self-locking answer for the stated friction (gear 1 a worm:
+        lead angle γ = 90° − β_1 against the friction angle φ' = atan(μ / cos α_n))."""
+        p, mu = spec.pair, spec.friction
+        fwd, back = efficiency(p, mu), efficiency(p, mu, backwards=True)
+        out = {"worm": "ZI (involute helicoid)" if is_worm(p) else None,
+               "friction_coefficient": mu, "friction_angle_deg": round(math.degrees(friction_angle(p, mu)), 4),
+               "efficiency_gear1_driving": round(fwd, 4), "efficiency_gear2_driving": round(back, 4),
+               "self_locking": back <= 0}
+        if is_worm(p):
+            out["lead_angle_deg"] = round(90.0 - math.degrees(abs(p.helix[0])), 6)
+        return out
+
+    def locking_text(self, spec: CrossedSpec) -> str:
+        k = self.locking(spec)
+        lead = (f"worm {k['worm']}, lead angle {k['lead_angle_deg']:g}°; " if k["worm"] else "")
+        return (f"{lead}friction μ {k['friction_coefficient']:g} (stated, checks.friction_coefficient): friction angle "
+                f"{k['friction_angle_deg']:.2f}°, efficiency {100 * k['efficiency_gear1_driving']:.0f} % driving gear 1, "
+                + ("self-locking: gear 2 cannot drive gear 1" if k["self_locking"] else
+                   f"{100 * k['efficiency_gear2_driving']:.0f} % driving gear 2: not self-locking"))
 
     def design_summary(self, spec: CrossedSpec, kit: CrossedKit) -> dict:
         return {"name": spec.name, "kind": self.kind, "printer": spec.printer.name,
@@ -267,10 +288,12 @@ class CrossedHelical:
 
     def bill_text(self, spec: CrossedSpec, man: dict, dest, seconds: float) -> str:
         p = spec.pair
-        lines = [f"{spec.name}: crossed helical pair {p.teeth[0]}/{p.teeth[1]} teeth, normal module "
-                 f"{p.normal_module:g} mm, helix {math.degrees(p.helix[0]):g}° + {math.degrees(p.helix[1]):g}° (right "
-                 f"hand) on shafts at {math.degrees(p.shaft_angle):g}°, {spec.centre_distance:.3f} mm apart; ratio "
-                 f"{p.teeth[1]}/{p.teeth[0]}"]
+        what = (f"a {p.teeth[0]}-start ZI worm and a {p.teeth[1]}-tooth helical wheel" if is_worm(p) else
+                f"crossed helical pair {p.teeth[0]}/{p.teeth[1]} teeth")
+        lines = [f"{spec.name}: {what}, normal module {p.normal_module:g} mm, helix {math.degrees(p.helix[0]):g}° + "
+                 f"{math.degrees(p.helix[1]):g}° (right hand) on shafts at {math.degrees(p.shaft_angle):g}°, "
+                 f"{spec.centre_distance:.3f} mm apart; ratio {p.teeth[1]}:{p.teeth[0]} (input turns per output turn)"]
+        lines.append(self.locking_text(spec))
         lines += [f"{q['name']:<8}{q['role']:<6}{q['triangles']:>9} triangles {q['volume_mm3'] / 1000:8.2f} cm3 "
                   f"{q['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in q['bbox_mm'])} mm" for q in man["parts"]]
         lines.append(f"wrote {dest}/ in {seconds:.2f} s")
@@ -283,7 +306,8 @@ class CrossedHelical:
                  f"  largest overlap {f['max_overlap_mm3']:.6f} mm³; backlash {b['min']:.3f}–{b['max']:.3f} mm along "
                  f"gear 2's pitch circle (designed {b['designed']:.3f} mm); transmission error "
                  f"{1000 * te['peak_to_peak']:.1f} µm peak to peak",
-                 "  closest: " + ", ".join(f"{k} {v:.2f} mm" for k, v in f["closest_mm"].items())]
+                 "  closest: " + ", ".join(f"{k} {v:.2f} mm" for k, v in f["closest_mm"].items()),
+                 "  " + self.locking_text(spec)]
         if "printability" in f:
             from ...checks.bed import bed_summary
 
@@ -318,7 +342,8 @@ class CrossedHelical:
             + (f"<p>Normal module {d['normal_module_mm']:g} mm, normal pressure angle "
                f"{d['normal_pressure_angle_deg']:g}°, shafts at {d['shaft_angle_deg']:g}°, "
                f"{d['centre_distance_mm']:.3f} mm apart; ratio {d['ratio']}; both right hand. Sliding at the pitch "
-               f"point {d['sliding_per_rolling']:.3f} mm per mm of gear 1's pitch circle.</p>")
+               f"point {d['sliding_per_rolling']:.3f} mm per mm of gear 1's pitch circle. "
+               f"{self.locking_text(spec).capitalize()}.</p>")
         f, s = result.figures, trace.stats
         check = (f'<p class="{"ok" if result.ok else "fail"}">{f["samples"]} phases over a tooth pitch, exact 3-D: '
                  f'largest overlap {f["max_overlap_mm3"]:.6f} mm³, backlash {f["backlash_mm"]["min"]:.3f}–'
@@ -328,6 +353,8 @@ class CrossedHelical:
                 ("Check", check)]
 
     def subtitle(self, spec: CrossedSpec) -> str:
+        if is_worm(spec.pair):
+            return f"{spec.gear1.teeth}-start worm and {spec.gear2.teeth}-tooth wheel"
         return f"{spec.gear1.teeth}/{spec.gear2.teeth} crossed helical pair"
 
 

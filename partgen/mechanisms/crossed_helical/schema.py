@@ -7,16 +7,18 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import Gap, Length, Material, Name, Strict, Teeth, Text
+from ...config.schema import Gap, Length, Material, Name, Strict, Text
 
 __all__ = ["CrossedHelicalDesign"]
 
-Helix = Annotated[float, Field(ge=5.0, le=75.0)]
+Helix = Annotated[float, Field(ge=3.0, le=85.0)]
+Starts = Annotated[int, Field(ge=1, le=1000)]
 Fit = Literal["printer"] | Annotated[float, Field(ge=-1, le=5)]
 
 
 class CrossedGears(Strict):
-    teeth: Annotated[list[Teeth], Field(min_length=2, max_length=2)]  # driver (input, gear 1), driven (output, gear 2)
+    # driver (input, gear 1: 1-3 teeth or a transverse pressure angle ≥ 40° make it a ZI worm), driven (output, gear 2)
+    teeth: Annotated[list[Starts], Field(min_length=2, max_length=2)]
     normal_module_mm: Length  # the rack both are cut by
     normal_pressure_angle_deg: Annotated[float, Field(ge=10.0, le=35.0)] = 20.0
     helix_angle_deg: Annotated[list[Helix], Field(min_length=2, max_length=2)]  # at the reference cylinders; add up to the shaft angle
@@ -43,6 +45,7 @@ class CrossedFrame(Strict):
 
 class CrossedChecks(Strict):
     samples: Annotated[int, Field(ge=4, le=1000)] = 12  # phases over one tooth pitch of gear 1 (exact 3-D tests)
+    friction_coefficient: Annotated[float, Field(ge=0.0, le=1.0)] = 0.15  # sliding along the teeth: efficiency, self-locking
     plate_margin_mm: Gap = 5.0
 
 
@@ -64,4 +67,6 @@ class CrossedHelicalDesign(Strict):
         if abs(total - self.shaft_angle_deg) > 1e-6:
             raise ValueError(f"[gears.helix_angle_deg] the helix angles add up to {total:g}°, not the shaft angle "
                              f"{self.shaft_angle_deg:g}° (Σ = β1 + β2, both one hand)")
+        if self.gears.teeth[1] < 4:
+            raise ValueError(f"[gears.teeth] gear 2 (the output) needs at least 4 teeth, got {self.gears.teeth[1]}")
         return self
