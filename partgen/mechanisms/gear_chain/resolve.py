@@ -295,7 +295,7 @@ def _auto_scale(loaded: LoadedDesign) -> ChainSpec:
     last = None
     for i, s in enumerate(ladder):
         try:
-            spec = resolve_spec(loaded, s)
+            spec = resolve_spec(loaded, s, advise=False)
         except ConfigError as e:
             last = e.problem
             continue
@@ -313,8 +313,9 @@ def _auto_scale(loaded: LoadedDesign) -> ChainSpec:
                       f"builds without a design warning; at {ladder[-1]:g}: {last}") from None
 
 
-def resolve_spec(loaded: LoadedDesign, drawing_scale: float | None = None) -> ChainSpec:
-    """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key."""
+def resolve_spec(loaded: LoadedDesign, drawing_scale: float | None = None, advise: bool = True) -> ChainSpec:
+    """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key.
+    ``advise``: a refusal computes the settings that would work (``curve.scale: auto``'s search turns it off)."""
     c = loaded.design.curve
     if drawing_scale is None and c is not None and c.drawn and c.scale == "auto":
         return _auto_scale(loaded)
@@ -328,9 +329,9 @@ def resolve_spec(loaded: LoadedDesign, drawing_scale: float | None = None) -> Ch
         trial = replace(inputs, chain=Chain(links, inputs.chain.offset))
         try:
             if loaded.design.gears.module_mm == "auto":
-                mech, params = auto_module(trial, params)
+                mech, params = auto_module(trial, params, advise)
             else:
-                mech = synthesize(trial, params)
+                mech = synthesize(trial, params, advise)
             break
         except ToothSystemError as e:  # the design names the tooth system's field; this is its key
             raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None
