@@ -167,3 +167,22 @@ def man_scale(shipped) -> float:
 def test_build_output_says_how_often_the_crank_turns(shipped):
     text = shipped.loaded.mechanism.bill_text(shipped.loaded.spec, shipped.manifest, shipped.dest, 0.0)
     assert "the crank turns 2 times per drawing" in text and "L2" in text
+
+
+def test_scale_ladder_is_the_same_for_inputs_an_ulp_apart():
+    z = lissajous(size=1.0)
+    out = []
+    for zz in (z, z * (1 + 2e-16), z + 1e-15):
+        _, off, links, theta = D.fit(zz, "samples")
+        out.append(D.scale_ladder(off, links, D.Drawing(zz, theta, "samples"), 1.0, 4, 20.0, 400.0, "L2"))
+    assert out[0] == out[1] == out[2]
+
+
+def test_auto_scale_without_a_window_is_refused_on_its_key(tmp_path, capsys):
+    write_csv(tmp_path / "c.csv", lissajous(size=1.0))
+    cfg = design(tmp_path, {"points": "c.csv", "scale": "auto", "max_links": 2, "max_deviation_mm": 0.5})
+    dest = tmp_path / "kit"
+    assert main(["build", str(cfg), "-o", str(dest), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "curve.scale" in err and "auto: no scale" in err and "Traceback" not in err, err
+    assert not dest.exists()
