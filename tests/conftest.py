@@ -122,6 +122,9 @@ SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[bennett_butterfly]": "test_bennett_cli.py",
     "test_bennett_kit.py": "test_bennett_cli.py",
     "test_plates.py": "test_check.py",  # checked_default_kit: `check KITDIR` of the default kit
+    "test_manifest_schema.py::test_manifest_holds_the_schema[lissajous]": "test_multi_turn_drawings.py",
+    "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_crossed_helical]": "test_crossed_helical.py",
+    "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_worm]": "test_worm.py",
 }
 # The groups that take longest go first, so the two workers end together.
 FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")

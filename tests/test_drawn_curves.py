@@ -216,13 +216,6 @@ def test_build_and_trace_measure_the_pen_against_the_samples(tmp_path, capsys):
     assert "2 chosen" in page and "your drawing" in page
 
 
-def test_a_curve_without_a_once_per_turn_term_is_refused(tmp_path, capsys):
-    # a 3:2 Lissajous figure is four links (speeds ±2, ±3) but none turns once per crank turn
-    t = 2 * np.pi * np.arange(400) / 400
-    write_csv(tmp_path / "c.csv", 80 * np.sin(3 * t) + 80j * np.sin(2 * t))
-    run_bad(tmp_path, capsys, design(tmp_path, {"points": "c.csv"}), "curve.points", "no term turning once per cycle")
-
-
 def test_a_curve_drawn_clockwise_is_reversed_so_link_1_turns_forwards(tmp_path):
     z = np.conj(epicycle(small=0.0))  # the mirror image, drawn the other way: M1 100 mm, L2 30 mm
     write_csv(tmp_path / "c.csv", z)

@@ -20,19 +20,24 @@ polylines), not estimated from the dropped terms.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import reduce
 
 import numpy as np
+
+from ..core.quantise import quantise
 
 from .curve import FourierCurve
 from .synthesis import Chain, Link, chain_order, link_name, trace
 
 __all__ = ["Drawing", "Row", "Choice", "closing", "crank_angles", "fit", "polyline_hausdorff", "chain_path",
-           "measure", "tradeoff", "choose", "rescue", "MAX_HARMONIC", "MIN_SAMPLES"]
+           "measure", "tradeoff", "choose", "rescue", "lead", "retime", "scale_ladder", "MAX_HARMONIC", "MIN_SAMPLES",
+           "LEAD_FRACTION"]
 
 MIN_SAMPLES = 16
 MAX_HARMONIC = 512  # highest speed a fitted link may turn at (a gear ratio beyond this is no kit)
 ARC_SAMPLES = 4096  # uniform-in-θ samples of an arc-length parametrisation (at least; more for long inputs)
+LEAD_FRACTION = 0.1  # a harmonic leads (the crank turns its link) only if its link is this share of the longest
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,6 +54,8 @@ class Drawing:
     source: str = ""  # the file (or "inline") the samples came from, for messages and plots
     rows: tuple = field(default=())  # the trade-off (tuple of Row) the choice was made from
     chosen: int = 0  # links kept
+    rounds: int = 1  # times the samples go round the curve; ``samples`` and ``theta`` keep the first round
+    scale: float = 1.0  # the enlargement of the file's points (curve.scale, given or chosen by auto)
 
 
 @dataclass(frozen=True)
@@ -314,3 +321,79 @@ def rescue(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_m
             more = n
             break
     return Rescue(up[0] if up else None, up[1] if up else 0, down[0] if down else None, down[1] if down else 0, more)
+
+
+def lead(links: tuple[Link, ...]) -> Link | None:
+    """The link the crank turns: the drawing's lowest harmonic that matters.
+
+    Of the links at least ``LEAD_FRACTION`` as long as the longest, the lowest |speed| k; of the
+    two links ±k, the longer (lengths compared at 1e-6 mm; a tie goes to +k). A curve with a
+    once-per-cycle term of that size leads with it (k = 1, the crank turns once per drawing); a
+    3:2 Lissajous figure (speeds ±2, ±3) leads with L2 and its crank turns twice per drawing. When
+    the lead turns backwards (-k) the caller draws the curve the other way round, which turns
+    every speed's sign. None when there are no links."""
+    if not links:
+        return None
+    longest = max(l.length for l in links)
+    big = [l for l in links if quantise(l.length) >= quantise(LEAD_FRACTION * longest)]
+    k = min(abs(l.speed) for l in big)
+    pair = [l for l in links if abs(l.speed) == k]
+    return min(pair, key=lambda l: (-quantise(l.length), -l.speed))
+
+
+def retime(chain: Chain, d: Drawing) -> tuple[Chain, Drawing]:
+    """One drawing per cycle of θ. When every speed of the chain is a multiple of g > 1 the pen
+    goes round the curve g times while θ turns once (the samples went round g times): every speed
+    is divided by g (θ' = gθ, the same path, drawn once per cycle) and the drawing keeps the
+    samples of its first round (θ < 2π/g), their angles multiplied by g. g = 1: unchanged."""
+    g = reduce(math.gcd, (abs(int(l.speed)) for l in chain.links), 0)
+    if g <= 1:
+        return chain, d
+    links = tuple(Link(link_name(l.speed // g), l.speed // g, l.length, l.phase) for l in chain.links)
+    keep = d.theta < 2 * np.pi / g - 1e-12
+    return Chain(links, chain.offset), replace(d, samples=d.samples[keep], theta=d.theta[keep] * g, rounds=g)
+
+
+SCALE_DIGITS = 3  # curve.scale: auto picks scales of three significant figures
+SCALE_STEP = 1.05  # the ladder's step: each scale tried is at least 5 % above the last
+
+
+def _round_up(x: float, digits: int = SCALE_DIGITS) -> float:
+    """x > 0 rounded up to ``digits`` significant figures, from x quantised to 1e-6 of the last
+    digit (so an ulp never moves it a step): 1.2301 → 1.24, 0.046 → 0.046, 27.9 → 27.9."""
+    e = math.floor(math.log10(x)) - digits + 1
+    unit = 10.0 ** e
+    n = -(-quantise(x / unit) // 10**6)
+    return float(n * 10**e) if e >= 0 else n / 10**(-e)
+
+
+def scale_ladder(offset: complex, links: tuple[Link, ...], d: Drawing, max_deviation_mm: float, max_links: int,
+                 min_link_mm: float, max_link_mm: float, lead_name: str | None = None,
+                 tries: int = 40) -> tuple[float, ...]:
+    """The scales ``curve.scale: auto`` tries, smallest first (``d`` and ``links`` at scale 1).
+
+    Scaling by s scales every link and every deviation by s, so the chain of the n longest links
+    (lead first; H(n) at s = 1, shortest link ℓ_n) is printable and within budget B for
+    ``min_link/ℓ_n ≤ s ≤ B/H(n)``, and its longest link fits for ``s ≤ max_link/ℓ_1``. The ladder
+    starts at the smallest such s over n ≤ ``max_links``, rounded up to three significant figures,
+    and climbs by at least ``SCALE_STEP`` (each rounded up likewise) while some n's window still
+    holds it, at most ``tries`` scales. Empty when no n has a window."""
+    rows = tradeoff(offset, links, d, max_links, 0.0, lead_name)
+    ok = candidates(links, 0.0, lead_name)
+    longest = max((l.length for l in ok), default=0.0)
+    windows = []
+    for r in rows:
+        lo = min_link_mm / r.shortest_mm
+        hi = min(max_deviation_mm / r.hausdorff_mm if r.hausdorff_mm > 0 else math.inf,
+                 max_link_mm / longest if longest > 0 else math.inf)
+        if lo <= hi:
+            windows.append((lo, hi))
+    if not windows:
+        return ()
+    top = max(hi for _, hi in windows)
+    s, out = _round_up(min(lo for lo, _ in windows)), []
+    while len(out) < tries and s <= top * (1 + 1e-9):
+        if any(lo * (1 - 1e-9) <= s <= hi * (1 + 1e-9) for lo, hi in windows):
+            out.append(s)
+        s = _round_up(s * SCALE_STEP)
+    return tuple(out)

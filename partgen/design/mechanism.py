@@ -167,12 +167,13 @@ def synthesize(inputs: MechanismInputs, params: ChainParams, advise: bool = True
 GEAR_RULES = ("tip-root", "contact-ratio", "involute", "backlash", "tip-width")  # what a module changes
 
 
-def auto_module(inputs: MechanismInputs, params: ChainParams) -> tuple[ChainDesign, ChainParams]:
+def auto_module(inputs: MechanismInputs, params: ChainParams, advise: bool = True) -> tuple[ChainDesign, ChainParams]:
     """``gears.module_mm: auto``: the largest module on the grid (``drivetrain.module_grid``) with which
     the chain synthesizes and every gear and mesh meets the rules `partgen check` holds it to on this
     printer (tip width in lines, tip-to-root, contact ratio, involute, backlash). Returns the
     mechanism and the kit parameters at that module; DesignError on ``gears.module_mm`` when none does,
-    naming the first refusal at the largest and at the smallest module."""
+    naming the first refusal at the largest and at the smallest module (with ``advise``, the
+    settings that would work: a search that tries many designs turns it off)."""
     from dataclasses import replace
 
     from .drivetrain import MODULE_RANGE, module_grid
@@ -192,6 +193,9 @@ def auto_module(inputs: MechanismInputs, params: ChainParams) -> tuple[ChainDesi
     hi, lo = max(first), min(first)
     why = {}
     for m in (hi, lo):  # the refusal again, now with the settings that would work
+        if not advise:
+            why[m] = first[m]
+            continue
         try:
             synthesize(inputs, replace(params, system=replace(params.system, module=m)))
             why[m] = first[m]

@@ -2,7 +2,9 @@
 and how far it is from the target curve (pure math, mm and rad).
 
 As built, link speeds follow from the gears (the student report's recurrence, equivalent to
-Eq 11): with the crank turning B1 at T_drive / T_G1,
+Eq 11): with B1 turning at its design speed s_1 (per cycle of the drawing; the crank, through the
+drive pair, turns s_1·T_G1/T_drive times per cycle: once for a curve with a once-per-cycle term,
+twice for a 3:2 Lissajous figure led by L2),
 ``ω_{j+1} = ω_j + (T_D,j / T_G,j+1)·(ω_{j-1} − ω_j)``, ω_0 = 0 (the base).
 Teeth that meet Eq 11 give back the integer design speeds exactly; others give fractional speeds
 and a path that no longer closes after one crank turn.
@@ -18,16 +20,23 @@ import numpy as np
 from .mechanism import ChainDesign
 from .synthesis import Chain, Link, links_from_curve, trace
 
-__all__ = ["built_speeds", "built_chain", "Deviation", "deviation", "hausdorff", "directed_hausdorff",
+__all__ = ["built_speeds", "built_chain", "crank_turns", "Deviation", "deviation", "hausdorff", "directed_hausdorff",
            "nearest_distances", "target_paths"]
 
 
 def built_speeds(mech: ChainDesign) -> tuple[Fraction, ...]:
-    """World speed of each link (crank turns: one per cycle) as its gears make it, exact."""
-    w = [Fraction(0), Fraction(mech.drive.teeth, mech.G1.teeth)]
+    """World speed of each link per cycle of the drawing as its gears make it, exact (B1 at its
+    design speed: the crank turns as often as ``crank_turns`` says)."""
+    w = [Fraction(0), Fraction(mech.chain.links[0].speed)]
     for td, tg in mech.couplings:
         w.append(w[-1] + Fraction(td, tg) * (w[-2] - w[-1]))
     return tuple(w[1:])
+
+
+def crank_turns(mech: ChainDesign) -> Fraction:
+    """Turns of the crank (the drive gear's axle) per cycle of the drawing: B1's speed times the
+    drive pair's ratio T_G1 / T_drive (1:1 in every kit)."""
+    return abs(Fraction(mech.chain.links[0].speed) * Fraction(mech.G1.teeth, mech.drive.teeth))
 
 
 def built_chain(mech: ChainDesign) -> Chain:

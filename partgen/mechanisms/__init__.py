@@ -20,6 +20,7 @@ KINDS = (
     "bennett_butterfly",
     "gear_pair",
     "gear_train",
+    "crossed_helical",
 )
 
 REGISTRY: dict[str, Mechanism] = {kind: import_module(f"{__name__}.{kind}").MECHANISM for kind in KINDS}

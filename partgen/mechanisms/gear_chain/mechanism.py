@@ -70,9 +70,24 @@ def drawing_deviation(mech) -> dict:
                           "rms_mm": _r6(r.rms_mm), "shortest_link_mm": _r6(r.shortest_mm)} for r in d.rows]}
 
 
+def crank_text(mech) -> str:
+    """How often the crank turns per drawing and why ("" for the usual once)."""
+    from ...design.trace import crank_turns
+
+    n, d = crank_turns(mech), mech.drawing
+    rounds = (f"; the samples go round the curve {d.rounds} times, so one drawing is their first round and every "
+              f"speed is 1/{d.rounds} of the fit's" if d is not None and d.rounds > 1 else "")
+    if n == 1 and not rounds:
+        return ""
+    l1 = mech.chain.links[0]
+    return (f"the crank turns {n} times per drawing: link 1 ({l1.name}) turns at the drawing's lowest harmonic, "
+            f"{abs(l1.speed)} turns per cycle, through the 1:1 drive pair{rounds}")
+
+
 def tradeoff_text(d) -> list[str]:
     """The links-against-deviation table of a drawing (build prints it)."""
-    lines = [f"links vs deviation from {d.source} ({len(d.samples)} samples, by {d.parametrisation.replace('_', ' ')}):",
+    lines = [f"links vs deviation from {d.source} ({len(d.samples)} samples, by {d.parametrisation.replace('_', ' ')}"
+             f"{f', at scale {d.scale:g}' if d.scale != 1 else ''}):",
              f"{'links':>7}{'Hausdorff mm':>14}{'max mm':>10}{'rms mm':>10}{'shortest link mm':>18}"]
     for r in d.rows:
         lines.append(f"{r.links:>7}{r.hausdorff_mm:>14.3f}{r.max_mm:>10.3f}{r.rms_mm:>10.3f}{r.shortest_mm:>18.2f}"
@@ -119,6 +134,8 @@ class GearChain:
 
     def design_summary(self, spec: ChainSpec, kit: Kit) -> dict:
         """The manifest's "design" entry: chain, stages, drive, stack, findings."""
+        from ...design.trace import crank_turns
+
         mech, params = spec.mechanism, spec.params
         return {
             "name": params.name,
@@ -128,6 +145,7 @@ class GearChain:
             "material": params.material,
             "density_g_cm3": _r6(params.density * 1000),
             "crank_angle_rad": 0.0,
+            "crank_turns_per_drawing": str(crank_turns(mech)),
             "module_mm": params.system.module,
             "pressure_angle_deg": _r6(math.degrees(params.system.pressure_angle)),
             "teeth_mode": "auto" if mech.auto_teeth else "explicit",
@@ -154,8 +172,10 @@ class GearChain:
         data["printer"] = "printer.yaml"
         if isinstance(data.get("gears"), dict) and data["gears"].get("module_mm") == "auto":
             data["gears"]["module_mm"] = spec.params.system.module  # the module auto chose, pinned
-        files = {}
         c = raw.design.curve
+        if c is not None and c.drawn and c.scale == "auto":
+            data["curve"] = {**data["curve"], "scale": spec.mechanism.drawing.scale}  # the scale auto chose, pinned
+        files = {}
         if c is not None and c.drawn and (c.svg is not None or isinstance(c.points, str)):
             from ...config.drawing import curve_file
 
@@ -184,7 +204,7 @@ class GearChain:
               animate: bool = True) -> Trace:
         """The pen of the chain as built over one crank turn vs its targets; trace.png/.svg/.gif into ``out``."""
         from ...design.synthesis import trace as trace_chain
-        from ...design.trace import built_chain, built_speeds, deviation, target_paths
+        from ...design.trace import built_chain, built_speeds, crank_turns, deviation, target_paths
 
         mech = spec.mechanism
         samples = samples or 3600
@@ -192,7 +212,7 @@ class GearChain:
         pen = trace_chain(built_chain(mech), theta)
         targets = target_paths(mech, theta)
         speeds = built_speeds(mech)
-        stats = {"samples": samples, "speeds": [str(w) for w in speeds],
+        stats = {"samples": samples, "speeds": [str(w) for w in speeds], "crank_turns_per_drawing": str(crank_turns(mech)),
                  "closes_after_one_turn": all(w.denominator == 1 for w in speeds),
                  "vs_pruned": deviation(pen, targets["pruned"], theta).to_dict()}
         if "full" in targets:
@@ -209,7 +229,9 @@ class GearChain:
             if "worst_theta_rad" in stats:
                 head["worst_theta_rad"] = stats["worst_theta_rad"]
             trace_figure(mech, head, out / "trace.png", out / "trace.svg",
-                         f"{spec.params.name}: the pen over one crank turn (mm)")
+                         f"{spec.params.name}: the pen over "
+                         + ("one crank turn (mm)" if crank_turns(mech) == 1 else
+                            f"one drawing, {crank_turns(mech)} crank turns (mm)"))
             files = ["trace.png", "trace.svg"]
             if animate:
                 trace_animation(mech, out / "trace.gif")
@@ -235,13 +257,19 @@ class GearChain:
         warn = sum(f.severity == "warn" for f in mech.findings)
         if mech.drawing is not None:
             lines += tradeoff_text(mech.drawing)
+        if crank_text(mech):
+            lines.append(crank_text(mech))
         lines.append(f"wrote {dest}/ ({len(parts)} STL, manifest.json, assembly.glb) in {seconds:.2f} s"
                      + (f"; {warn} warning{'s' if warn != 1 else ''} above (`partgen check` will fail)" if warn else ""))
         return "\n".join(lines)
 
     def check_text(self, spec: ChainSpec, result: Result, folder, seconds: float) -> str:
+        from ...design.trace import crank_turns
+
         f = result.figures
-        lines = [f"{spec.params.name}: {f['parts']} parts, {f['pairs']} pairs, {f['samples']} crank angles over one turn"]
+        turns = crank_turns(spec.mechanism)
+        lines = [f"{spec.params.name}: {f['parts']} parts, {f['pairs']} pairs, {f['samples']} crank angles over "
+                 + ("one turn" if turns == 1 else f"one drawing ({turns} crank turns)")]
         counts: dict = {}
         for x in result.findings:
             counts.setdefault(x.check, {"fail": 0, "warn": 0, "info": 0})[x.severity] += 1
@@ -293,7 +321,9 @@ class GearChain:
 
     def trace_text(self, spec: ChainSpec, trace: Trace, folder) -> str:
         stats = trace.stats
-        lines = [f"{spec.params.name}: pen over one crank turn, {stats['samples']} samples; link speeds as built "
+        turns = stats.get("crank_turns_per_drawing", "1")
+        over = "one crank turn" if turns == "1" else f"one drawing ({turns} crank turns)"
+        lines = [f"{spec.params.name}: pen over {over}, {stats['samples']} samples; link speeds as built "
                  f"{', '.join(stats['speeds'])}"
                  + ("" if stats["closes_after_one_turn"] else " (fractional: the path does not close after one turn)"),
                  f"{'traced vs':<28}{'max (same θ) mm':>16}{'rms mm':>10}{'Hausdorff mm':>14}"]
@@ -375,7 +405,8 @@ class GearChain:
                               "tensioner (link frame) mm", "link change mm"], belts, left=1) if belts else "")
                   + f"<p>Module {params.system.module:g} mm, pressure angle {math.degrees(params.system.pressure_angle):g}°, "
                   f"backlash {params.system.backlash_per_gear:g} mm per gear, face width {params.face_width:g} mm, "
-                  f"printer {html.escape(params.printer.name)}, material {html.escape(params.material)}.</p>")
+                  f"printer {html.escape(params.printer.name)}, material {html.escape(params.material)}."
+                  + (f" {html.escape(crank_text(mech)).capitalize()}." if crank_text(mech) else "") + "</p>")
         stack_html = f'<figure>{R.img(stack_png, "section through the joints")}<figcaption>True section through ' \
                      "the joints, links straightened.</figcaption></figure>"
         stats = trace.stats

@@ -54,10 +54,9 @@ def _closed(z: np.ndarray, close: bool, where: Path, key: str) -> np.ndarray:
     return z
 
 
-def _drawn(loaded: LoadedDesign) -> tuple[Chain, drawing.Drawing]:
-    """The chain of the fewest printable links that draws the design's drawing within its budget."""
-    d, p = loaded.design, loaded.printer
-    c = d.curve
+def _samples(loaded: LoadedDesign) -> tuple[np.ndarray, str, str, str]:
+    """The drawing's points (n, 2) mm at scale 1, its parametrisation, source file and key."""
+    c = loaded.design.curve
     if c.svg is not None:
         key = "curve.svg"
         f = curve_file(c.svg, loaded.path, key, ".svg")
@@ -69,35 +68,46 @@ def _drawn(loaded: LoadedDesign) -> tuple[Chain, drawing.Drawing]:
     else:
         key = "curve.points"
         xy, param, source = inline_points(c.points, loaded.path), "samples", "inline"
-    param = c.parametrisation or param
+    return xy, c.parametrisation or param, source, key
+
+
+def _fitted(loaded: LoadedDesign, scale: float):
+    """The drawing at ``scale``, drawn the way round that turns its lead link forwards: (offset,
+    links, Drawing, lead link, key, "file: ")."""
+    c = loaded.design.curve
+    xy, param, source, key = _samples(loaded)
     where = f"{source}: " if source != "inline" else ""
-    z = _closed((xy[:, 0] + 1j * xy[:, 1]) * c.scale, c.close, loaded.path, key)
+    z = _closed((xy[:, 0] + 1j * xy[:, 1]) * scale, c.close, loaded.path, key)
     _, offset, links, theta = drawing.fit(z, param)
-    first = {l.speed: l.length for l in links if abs(l.speed) == 1}
-    if first.get(-1, 0.0) > first.get(1, 0.0):  # the crank turns link 1 forwards: draw the curve the other way
+    head = drawing.lead(links)
+    if head is not None and head.speed < 0:  # the crank turns the lead link forwards: draw the curve the other way
         z = np.concatenate([z[:1], z[:0:-1]])
         _, offset, links, theta = drawing.fit(z, param)
-    dr = drawing.Drawing(z, theta, param, source)
-    if not links:
+        head = drawing.lead(links)
+    if head is None:
         raise ConfigError(loaded.path, key, f"{where}the curve has no rotating part")
-    if not first:
-        raise ConfigError(loaded.path, key, f"{where}the curve has no term turning once per cycle (its speeds are "
-                          f"{', '.join(str(l.speed) for l in links[:6])}, …): the crank turns the first link once "
-                          "per drawing, so partgen draws only curves that go once around (a drawing traced "
-                          "twice, or a Lissajous figure, needs another drive)")
+    return offset, links, drawing.Drawing(z, theta, param, source), head, key, where
+
+
+def _drawn(loaded: LoadedDesign, scale: float) -> tuple[Chain, drawing.Drawing]:
+    """The chain of the fewest printable links that draws the design's drawing within its budget,
+    led by the drawing's lowest harmonic (``drawing.lead``) and retimed to draw it once per cycle."""
+    d, p = loaded.design, loaded.printer
+    c = d.curve
+    offset, links, dr, head, key, where = _fitted(loaded, scale)
     budget, most, shortest = c.max_deviation_mm, c.max_links, p.min_link_length_mm
-    choice = drawing.choose(offset, links, dr, budget, most, shortest, lead="L1")
+    choice = drawing.choose(offset, links, dr, budget, most, shortest, lead=head.name)
     if choice.chosen is None:
-        r = drawing.rescue(offset, links, dr, budget, most, shortest, lead="L1")
+        r = drawing.rescue(offset, links, dr, budget, most, shortest, lead=head.name)
         best = min(choice.rows, key=lambda x: x.hausdorff_mm, default=None)
         got = (f"the best, {best.links} links, is {best.hausdorff_mm:.3g} mm away" if best else
                f"its longest link would be {links[0].length:.3g} mm")
         fixes = []
         if r.up is not None:
-            f = math.ceil(c.scale * r.up * 1000) / 1000
+            f = math.ceil(scale * r.up * 1000) / 1000
             fixes.append(f"curve.scale: {f:g} ({r.up_links} links; the drawing {r.up:.3g}× this size)")
         if r.down is not None:
-            f = math.floor(c.scale * r.down * 1000) / 1000
+            f = math.floor(scale * r.down * 1000) / 1000
             fixes.append(f"curve.scale: {f:g} ({r.down_links} links; the drawing {r.down:.3g}× this size)")
         if r.links is not None:
             fixes.append(f"curve.max_links: {r.links}")
@@ -106,7 +116,7 @@ def _drawn(loaded: LoadedDesign) -> tuple[Chain, drawing.Drawing]:
         raise ConfigError(loaded.path, "curve.max_deviation_mm",
                           f"{where}no chain of at most {most} links of at least {shortest:g} mm (the printer's "
                           f"smallest link) comes within {budget:g} mm of the drawing: {got}{fix}")
-    return choice.chain, replace(dr, rows=choice.rows, chosen=choice.chosen.links)
+    return drawing.retime(choice.chain, replace(dr, rows=choice.rows, chosen=choice.chosen.links))
 
 
 def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]:
@@ -132,7 +142,7 @@ def _chain(loaded: LoadedDesign) -> tuple[Chain, object, float, tuple[str, ...]]
     return Chain(links, complex(*d.offset_mm)), None, 1.0, ()
 
 
-def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
+def _sizes(loaded: LoadedDesign, chain: Chain, scale: float = 1.0) -> None:
     """Refuse, before any geometry, links no plate of this printer can span and chains whose links
     all fall under the printer's smallest link (a curve at a scale that makes it vanish)."""
     d, p = loaded.design, loaded.printer
@@ -151,7 +161,7 @@ def _sizes(loaded: LoadedDesign, chain: Chain) -> None:
         for j, l in enumerate(chain.links):
             if l.length < p.min_gear_diameter_mm:
                 if d.curve is not None and d.curve.drawn:
-                    where = f"at curve.scale {d.curve.scale:g} the drawing makes link {j + 1} ({l.name})"
+                    where = f"at curve.scale {scale:g} the drawing makes link {j + 1} ({l.name})"
                     fix, key = "enlarge the drawing (curve.scale)", "curve.scale"
                 elif d.curve is not None:
                     where = f"at {d.curve.scale_mm_per_unit:g} mm per unit the curve makes link {j + 1} ({l.name})"
@@ -175,16 +185,22 @@ def _fit(loaded: LoadedDesign, kind: str) -> float:
     return printer_fit(loaded, value, kind, f"joints.{kind}_clearance_diametral_mm")
 
 
-def resolve(loaded: LoadedDesign) -> tuple[MechanismInputs, KitParams]:
-    """The mechanism inputs and kit parameters of a loaded design (mm, rad)."""
+def resolve(loaded: LoadedDesign, drawing_scale: float | None = None) -> tuple[MechanismInputs, KitParams]:
+    """The mechanism inputs and kit parameters of a loaded design (mm, rad). ``drawing_scale``: the
+    enlargement of a drawing (``curve.scale``, or the one ``auto`` is trying)."""
     d, p = loaded.design, loaded.printer
     drawn = None
     if d.curve is not None and d.curve.drawn:
-        chain, drawn = _drawn(loaded)
+        s = drawing_scale if drawing_scale is not None else d.curve.scale
+        if s == "auto":
+            raise ValueError("curve.scale: auto is chosen by resolve_spec")
+        chain, drawn = _drawn(loaded, s)
+        drawn = replace(drawn, scale=s)
         fc, scale, dropped = None, 1.0, ()
+        _sizes(loaded, chain, s)
     else:
         chain, fc, scale, dropped = _chain(loaded)
-    _sizes(loaded, chain)
+        _sizes(loaded, chain)
     g = d.gears
     system = ToothSystem(
         module=1.0 if g.module_mm == "auto" else g.module_mm,  # auto: chosen in resolve_spec
@@ -259,9 +275,52 @@ def _room(links) -> float:
     return room
 
 
-def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
-    """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key."""
-    inputs, params = resolve(loaded)
+def _auto_scale(loaded: LoadedDesign) -> ChainSpec:
+    """``curve.scale: auto``: the first scale of ``drawing.scale_ladder`` (smallest first, three
+    significant figures, at least 5 % apart) whose kit synthesizes — links printable, within the
+    deviation budget, gears fitted to every link, the longest link within the printer's envelope.
+    The scales are tried in that order only, so the same drawing gets the same scale anywhere. The
+    build's findings say which scale was chosen and how many were tried."""
+    from ...design.drivetrain import design_finding
+
+    c, p = loaded.design.curve, loaded.printer
+    offset, links, dr, head, key, where = _fitted(loaded, 1.0)
+    reach = math.hypot(*p.build_envelope_mm)
+    ladder = drawing.scale_ladder(offset, links, dr, c.max_deviation_mm, c.max_links, p.min_link_length_mm, reach,
+                                  head.name)
+    if not ladder:
+        raise ConfigError(loaded.path, "curve.scale", f"{where}auto: no scale makes a chain of at most {c.max_links} "
+                          f"links both printable (links ≥ {p.min_link_length_mm:g} mm, the longest ≤ {reach:.0f} mm) "
+                          f"and within {c.max_deviation_mm:g} mm of the drawing: raise curve.max_deviation_mm or "
+                          "curve.max_links")
+    last = None
+    for i, s in enumerate(ladder):
+        try:
+            spec = resolve_spec(loaded, s, advise=False)
+        except ConfigError as e:
+            last = e.problem
+            continue
+        warn = [f for f in spec.mechanism.findings if f.severity == "warn"]
+        if warn:  # builds, but `check` would fail it
+            last = f"{len(warn)} design warning(s), the first: {warn[0].message}"
+            continue
+        note = design_finding("info", "auto-scale", f"auto chose {s:g} (the drawing {s:g}× the file's size): the "
+                              f"smallest of {len(ladder)} scales from {ladder[0]:g} (three significant figures, "
+                              f"≥ {round((drawing.SCALE_STEP - 1) * 100):g} % apart) whose chain synthesizes without a "
+                              f"design warning; {i + 1} tried", "curve.scale")
+        mech = replace(spec.mechanism, findings=(note, *spec.mechanism.findings))
+        return replace(spec, mechanism=mech)
+    raise ConfigError(loaded.path, "curve.scale", f"auto: none of the {len(ladder)} scales {ladder[0]:g}–{ladder[-1]:g} "
+                      f"builds without a design warning; at {ladder[-1]:g}: {last}") from None
+
+
+def resolve_spec(loaded: LoadedDesign, drawing_scale: float | None = None, advise: bool = True) -> ChainSpec:
+    """Resolve and synthesize a validated design; a ``DesignError`` becomes a ``ConfigError`` on its key.
+    ``advise``: a refusal computes the settings that would work (``curve.scale: auto``'s search turns it off)."""
+    c = loaded.design.curve
+    if drawing_scale is None and c is not None and c.drawn and c.scale == "auto":
+        return _auto_scale(loaded)
+    inputs, params = resolve(loaded, drawing_scale)
     orders = [inputs.chain.links]
     if inputs.source == "drawing" and inputs.teeth is None:  # the first order whose gears fit each link
         found = drawing.drawable_orders(inputs.chain.links, limit=200, first=inputs.chain.links[0].name)
@@ -271,9 +330,9 @@ def resolve_spec(loaded: LoadedDesign) -> ChainSpec:
         trial = replace(inputs, chain=Chain(links, inputs.chain.offset))
         try:
             if loaded.design.gears.module_mm == "auto":
-                mech, params = auto_module(trial, params)
+                mech, params = auto_module(trial, params, advise)
             else:
-                mech = synthesize(trial, params)
+                mech = synthesize(trial, params, advise)
             break
         except ToothSystemError as e:  # the design names the tooth system's field; this is its key
             raise ConfigError(loaded.path, TOOTH_KEYS.get(e.field, "gears"), e.problem) from None

@@ -56,7 +56,7 @@ class Curve(Strict):
     close: bool = False
     max_deviation_mm: Annotated[float, Field(ge=0.001, le=MAX)] = 1.0
     max_links: Annotated[int, Field(ge=1, le=64)] = 16
-    scale: Ratio = 1.0
+    scale: Ratio | Literal["auto"] = 1.0  # auto: the smallest enlargement that builds (resolve._auto_scale)
     scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)] | None = None
     drop_links: Annotated[list[Annotated[str, Field(max_length=40)]], Field(max_length=200)] = []
 

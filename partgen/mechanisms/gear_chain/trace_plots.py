@@ -49,10 +49,12 @@ def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "")
         ax.plot(paths["full"].real, paths["full"].imag, color="#999", lw=3.5, alpha=0.6, label="target: full Fourier series")
     ax.plot(paths["pruned"].real, paths["pruned"].imag, color="#4c78a8", lw=1.8, label="target: the design's links (pruned)")
     ax.plot(pen.real, pen.imag, color="#e45756", lw=0.9, ls="--", label="traced by the kit as built (its teeth)")
+    turns = abs(mech.chain.links[0].speed)  # crank turns per drawing (the drive pair is 1:1)
     for k, deg in enumerate(LINK_ANGLES_DEG):
         J = _joints(built, np.radians(deg))
         ax.plot(J[:, 0], J[:, 1], "-o", color=plt.cm.viridis(k / len(LINK_ANGLES_DEG)), lw=1.2, ms=2.5, alpha=0.8,
-                label=f"links at crank {deg}°")
+                label=f"links at crank {deg}°" if turns == 1 else
+                f"links at θ {deg}° (crank {deg * turns}°)")
     step = len(theta) // 24
     d = np.gradient(pen)[::step]
     d = d / np.maximum(np.abs(d), 1e-12) * 0.04 * np.ptp(pen.real)  # direction only, a fixed length
