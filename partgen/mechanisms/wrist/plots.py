@@ -28,6 +28,10 @@ def wrist_figure(I: float, A: float, theta_max: float, rows, png, svg=None, titl
     ax[0].axvspan(0, math.degrees(theta_max), color="#4c78a8", alpha=0.08, label="workspace")
     ax[0].set_xlabel("θ (°) on gear 1")
     ax[0].set_ylabel("ratio i = r1 / r2")
+    ax[0].ticklabel_format(axis="y", useOffset=False)  # a constant ratio reads 1.000, not 1e-12 + 1
+    lo, hi = ax[0].get_ylim()
+    if hi - lo < 1e-3:  # a constant ratio (I = 1): a readable band around it
+        ax[0].set_ylim(lo - 0.05, hi + 0.05)
     ax[0].legend(fontsize=8)
     ax[1].plot(np.degrees(t), np.degrees(sph.mating_angle_meridian(t, I)), lw=2, label="φ = ∫ i dθ (meridian arcs)")
     ax[1].plot(np.degrees(t[::25]), np.degrees(sph.mating_angle_latitude(t[::25], I)), "s", ms=4,
