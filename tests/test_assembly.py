@@ -77,3 +77,26 @@ def test_the_bennett_steps_pin_every_joint_once_after_its_links():
     assert at["fill_link02"] < at["base"] < at["link01"]
     for j, ((a, b), _, _) in JOINTS.items():
         assert at[f"pin_{j}"] >= max(at[f"link{a:02d}"], at[f"link{b:02d}"]), j
+
+
+@pytest.mark.parametrize("cfg", ["gear_train_reducer.yaml", "gear_train_herringbone.yaml", "gear_train_planetary.yaml",
+                                 "gear_train_rack.yaml"])
+def test_gear_train_steps_go_from_the_bottom_plate_up(cfg):
+    """Every part once; frame_bottom first, frame_top (where there is one) last; each shaft no later
+    than the gears it carries, a shaft's bought screw and nut with it; shafts in the train's order."""
+    loaded = pipeline.load(Path(__file__).parent.parent / "configs" / cfg)
+    kit = pipeline.make_kit(loaded)
+    steps = steps_of(loaded.mechanism, loaded.spec, kit)
+    order = [n for _, names in steps for n in names]
+    assert sorted(order) == sorted(p.name for p in kit.parts)
+    assert order[0] == "frame_bottom"
+    if "frame_top" in order:
+        assert order[-1] == "frame_top"
+    at = {n: i for i, n in enumerate(order)}
+    shafts = [p.name for p in kit.parts if p.name.startswith("shaft")]
+    assert [at[s] for s in shafts] == sorted(at[s] for s in shafts)
+    for _, names in steps:
+        gears = [n for n in names if n.startswith(("gears", "sun", "pinion"))]
+        if gears:
+            assert any(n.startswith("shaft") for n in names), names  # a gear goes on with its shaft
+    assert all("Fit the bought parts" not in text for text, _ in steps)

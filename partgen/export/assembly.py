@@ -44,12 +44,18 @@ def steps_of(mechanism, spec, kit: Kit) -> list[Step]:
     return steps
 
 
-def assembly_section(steps: list[Step], pictures: dict[str, bytes]) -> tuple[str, str]:
+def assembly_section(steps: list[Step], pictures: dict[str, bytes], printed_as: dict[str, str] | None = None
+                     ) -> tuple[str, str]:
     """("Assembly", html): the steps in order, each with the pictures of its parts (``pictures``:
-    part name -> PNG; a part without one is named only)."""
+    part name -> PNG; a part without one is named only; ``printed_as``: a copy's name -> the name the
+    bill lists it under, said in its caption)."""
     items = []
+    alias = printed_as or {}
+
+    def caption(n: str) -> str:
+        return html.escape(n) + (f" <small>(a {html.escape(alias[n])})</small>" if n in alias else "")
     for text, names in steps:
         figs = "".join(f"<figure>{R.img(pictures[n], n, width=120) if n in pictures else ''}"
-                       f"<figcaption>{html.escape(n)}</figcaption></figure>" for n in names)
+                       f"<figcaption>{caption(n)}</figcaption></figure>" for n in names)
         items.append(f'<li><p>{html.escape(text)}</p><div class="grid">{figs}</div></li>')
     return ("Assembly", f'<ol class="steps">{"".join(items)}</ol>')

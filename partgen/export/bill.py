@@ -30,12 +30,13 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
             T = poses[it.part.name] @ it.local_from_print
             scene.append((g[0].mesh.vertices @ T[:3, :3].T + T[:3, 3], g[0].mesh.faces, colour(it.part.role)))
     assembly_png = render(scene, (1100, 720), elev=35, azim=-70)
-    rows, pictures = [], {}
+    rows, pictures, printed_as = [], {}, {}
     density = kit.density
     for g in groups:
         p, m = g[0].part, g[0].mesh
         pic = render([(m.vertices, m.faces, colour(p.role))], (300, 240))
         pictures.update({it.part.name: pic for it in g})
+        printed_as.update({it.part.name: p.name for it in g[1:]})  # the bill lists the copies under g's first name
         gear = p.gear
         com = m.center_mass if m.is_volume else m.centroid
         rows.append([R.img(pic, p.name), p.name, p.role, len(g), " × ".join(f"{x:.1f}" for x in m.extents),
@@ -63,7 +64,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
         for p in kit.parts:  # the bought parts as modelled (a belt's band)
             if not p.printed and any(p.name in names for _, names in steps):
                 pictures[p.name] = render([(*mesh_arrays(p.solid), colour(p.role))], (300, 240))
-        out.append(assembly_section(steps, pictures))
+        out.append(assembly_section(steps, pictures, printed_as))
     return out
 
 
