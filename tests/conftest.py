@@ -122,6 +122,8 @@ SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[bennett_butterfly]": "test_bennett_cli.py",
     "test_bennett_kit.py": "test_bennett_cli.py",
     "test_plates.py": "test_check.py",  # checked_default_kit: `check KITDIR` of the default kit
+    "test_tolerance_wrist.py": "test_wrist.py",  # the wrist kits
+    "test_tolerance_bennett.py": "test_bennett_cli.py",  # the shipped Bennett kit
 }
 # The groups that take longest go first, so the two workers end together.
 FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")
