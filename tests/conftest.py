@@ -125,6 +125,8 @@ SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[lissajous]": "test_multi_turn_drawings.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_crossed_helical]": "test_crossed_helical.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_worm]": "test_worm.py",
+    "test_tolerance_wrist.py": "test_wrist.py",  # the wrist kits
+    "test_tolerance_bennett.py": "test_bennett_cli.py",  # the shipped Bennett kit
 }
 # The groups that take longest go first, so the two workers end together.
 FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")

@@ -83,7 +83,10 @@ def test_the_jam_probability_column(tmp_path, capsys):
     assert all(r["jam_probability"] == "" for r in csv.DictReader((plain / "points.csv").open()))
 
 
-def test_tolerance_samples_on_a_kind_with_no_model_is_refused(tmp_path, capsys):
+def test_tolerance_samples_on_a_kind_with_no_model_is_refused(tmp_path, capsys, monkeypatch):
+    from partgen.mechanisms import REGISTRY
+
+    monkeypatch.delattr(type(REGISTRY["wrist"]), "tolerance_model")  # every shipped kind has one: a kind without
     out = tmp_path / "sweep"
     assert main(["sweep", str(CONFIGS / "wrist_sphere.yaml"), "--vary", "wrist.centre_distance_mm=58:62:2",
                  "--tolerance-samples", "100", "-o", str(out)]) == 2

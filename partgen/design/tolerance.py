@@ -28,7 +28,13 @@ position    one coordinate (x or y, in its part's frame) of a hole,   A / (3·�
 outline     a non-gear part's outline, as a diameter                  A / 3
 height      a printed height (a part's thickness, a spacer's height)  A / 3 (profiles give no
                                                                       z accuracy)
+process     a printing process figure that is not a dimension (a      its own σ, given with the
+            part's infill fraction)                                   feature (``sigma``)
 =========== ========================================================= =====================
+
+A margin's group says what fails: a ``joint`` (a fit grips its pin), a ``mesh``, a ``clearance``
+between passing parts, or the ``balance`` of a balanced linkage (its centre of mass off its pivot
+by more than the design allows).
 
 Where a gear sits in its bore (``Play``, ``seat_factor``; docs/tolerance.md): a mesh that runs out
 of backlash touches on both flanks, and the two flank forces push its gears apart along the line
@@ -49,8 +55,8 @@ import numpy as np
 __all__ = ["KINDS", "GROUPS", "Feature", "Margin", "Play", "seat_factor", "seat_credit", "MarginModel", "ModelBuilder", "sigma_of", "run_chunk", "ChunkTally", "add_tallies",
            "wilson", "summarise", "chunk_sizes", "least_play", "PLAY_STEP_MM", "AUTO_SAMPLES"]
 
-KINDS = ("hole", "pin", "tooth", "position", "outline", "height")
-GROUPS = ("joint", "mesh", "clearance")
+KINDS = ("hole", "pin", "tooth", "position", "outline", "height", "process")
+GROUPS = ("joint", "mesh", "clearance", "balance")
 Z95 = 1.959963984540054  # two-sided 95 % normal quantile
 
 
@@ -58,6 +64,8 @@ def sigma_of(kind: str, accuracy_mm: float) -> float:
     """σ (mm) of a feature of ``kind`` for a printer accuracy of ± ``accuracy_mm`` (3σ of a dimension)."""
     if kind not in KINDS:
         raise ValueError(f"unknown feature kind {kind!r}")
+    if kind == "process":
+        raise ValueError("a process feature carries its own sigma")
     s = accuracy_mm / 3.0
     return s / math.sqrt(2.0) if kind == "position" else s
 
@@ -69,6 +77,7 @@ class Feature:
     name: str
     kind: str
     part: str
+    sigma: float | None = None  # σ of a ``process`` feature (its own units); None: from the kind and accuracy
 
 
 @dataclass(frozen=True)
@@ -182,7 +191,8 @@ class MarginModel:
 
 class ModelBuilder:
     """A mechanism's margins as they are named: ``add(margin, {(feature name, kind, part): mm of
-    margin per mm of deviation})``, then ``model(accuracy, source)``."""
+    margin per mm of deviation})``, then ``model(accuracy, source)``. A ``process`` feature's key
+    carries its σ as a fourth item: ``(name, "process", part, sigma)``, margin per unit of it."""
 
     def __init__(self):
         self.features: dict[str, Feature] = {}
@@ -191,10 +201,11 @@ class ModelBuilder:
 
     def add(self, margin: Margin, terms: dict[tuple[str, str, str], float]) -> None:
         col: dict[str, float] = {}
-        for (name, kind, part), c in terms.items():
+        for key, c in terms.items():
             if c == 0.0:
                 continue
-            self.features.setdefault(name, Feature(name, kind, part))
+            name, kind, part = key[:3]
+            self.features.setdefault(name, Feature(name, kind, part, *key[3:4]))
             col[name] = col.get(name, 0.0) + c
         self.margins.append(margin)
         self.cols.append(col)
@@ -206,7 +217,7 @@ class ModelBuilder:
         for k, col in enumerate(self.cols):
             for name, c in col.items():
                 coeff[idx[name], k] = c
-        sigma = np.array([sigma_of(f.kind, accuracy) for f in feats])
+        sigma = np.array([f.sigma if f.sigma is not None else sigma_of(f.kind, accuracy) for f in feats])
         nominal = np.array([m.nominal for m in self.margins], dtype=float)
         return MarginModel(feats, tuple(self.margins), coeff, sigma, nominal, float(accuracy), source)
 

@@ -288,6 +288,14 @@ class BennettButterfly:
                 progress(min(done[0], steps), steps)
         return check_bennett(kit, say)
 
+    def tolerance_model(self, spec, kit, result, accuracy_mm: float, seated: bool = True):
+        """What makes a print fail as a ``design.tolerance.MarginModel``: pins in their bores, the Bennett
+        loops closing on their joints' play, and the balance as printed (no gear sits in a bore:
+        ``seated`` changes nothing)."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm, seated)
+
     def trace(self, spec: BennettParams, kit: A.BennettKit, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:
         """The linkage over its workspace: the poses (planar and spatial) and the path of the common

@@ -149,6 +149,14 @@ class GearTrain:
             return check_rack(kit, samples, progress)
         return check_train(kit, samples, progress)
 
+    def tolerance_model(self, spec, kit, result: Result, accuracy_mm: float, seated: bool = True):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel`` (every mesh,
+        fit and clearance; the planetary's assembly with printed teeth; the rack; ``seated``: bodies where
+        their meshes push them in their bores, otherwise centred)."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm, seated)
+
     def trace(self, spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """Output angle against input angle over one turn of the output, from the printed outlines (a
         rack's travel against the pinion's angle over its travel)."""

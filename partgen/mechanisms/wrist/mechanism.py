@@ -96,6 +96,13 @@ class Wrist:
         res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
+    def tolerance_model(self, spec: WristSpec, kit: WristKit, result: Result, accuracy_mm: float, seated: bool = True):
+        """The margins of each dome tooth in its socket over the workspace as a ``design.tolerance.MarginModel``
+        (no bores run: ``seated`` changes nothing)."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm, seated)
+
     def trace(self, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
         """The ratio i(θ) and the mating angle φ(θ) over the valid range, the tooth rows; wrist.png/.svg."""
         samples = samples or 2000
