@@ -265,14 +265,16 @@ def layers_table() -> str:
 
 
 def _first_sentence(path: Path) -> str:
+    """The first paragraph of a module's docstring, cut at a sentence's end near 240 characters."""
     try:
         doc = ast.get_docstring(ast.parse(path.read_text())) or ""
-    except SyntaxError:
+    except (SyntaxError, FileNotFoundError):
         return ""
-    text = " ".join(doc.split())
-    m = re.match(r"(.+?[.:;])(\s|$)", text)
-    text = m.group(1) if m else text
-    return (text[:197] + "…" if len(text) > 200 else text).replace("|", "\\|")
+    text = " ".join(doc.split("\n\n")[0].split())
+    if len(text) > 240:
+        cut = max(text.rfind(". ", 0, 240), text.rfind("; ", 0, 240))
+        text = text[:cut + 1] if cut > 60 else text[:text.rfind(" ", 0, 240)] + " …"
+    return text.replace("``", "`").replace("|", "\\|")
 
 
 def modules_list() -> str:
@@ -282,7 +284,7 @@ def modules_list() -> str:
     for unit in allowed_layers():
         d = pkg / unit
         if d.is_dir():
-            out += [f"### `{unit}/`", "", _first_sentence(d / "__init__.py"), ""]
+            out += [f"### `{unit}/`", "", _first_sentence(d / "__init__.py") or "(no package docstring)", ""]
             for f in sorted(d.glob("*.py")):
                 if f.name != "__init__.py":
                     out.append(f"- `{f.name}` — {_first_sentence(f)}")
