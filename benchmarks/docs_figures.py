@@ -40,9 +40,9 @@ def partgen(*args: str, ok=(0,)) -> dict:
     return json.loads(p.stdout)
 
 
-def r(x: float, digits: int = 2) -> float:
-    """Rounded for reading (``-0.0`` never shows)."""
-    return round(float(x), digits) + 0.0
+def r(x: float, digits: int = 2) -> float | int:
+    """Rounded for reading (``-0.0`` never shows; 0 digits gives a whole number)."""
+    return int(round(float(x))) if digits <= 0 else round(float(x), digits) + 0.0
 
 
 def pct(p: float, digits: int = 1) -> float:
@@ -192,7 +192,7 @@ def bennett(tmp: Path) -> dict:
     return {
         "com_printed_mm": float(f"{b['fdm']:.1g}"), "com_solid_mm": r(b["solid"]),
         "com_infill_error_mm": r(b["fdm_infill_error"]), "com_no_binder_mm": r(b["no_binder"]),
-        "com_slug_short_mm": f"{r(min(short), 0):g}–{r(max(short), 0):g}",
+        "com_slug_short_mm": f"{r(min(short), 0)}–{r(max(short), 0)}",
         "least_clearance_mm": r(f["least_clearance_mm"]), "least_clearance_parts": " and ".join(f["least_clearance_parts"]),
         "step_deg": r(f["step_deg"]), "free_from_deg": r(f["free_range_deg"][0], 1),
         "free_to_deg": r(f["free_range_deg"][1], 1),

@@ -205,8 +205,8 @@ def _lookup(data: dict, key: str):
 def _scalar(v) -> str:
     if isinstance(v, bool):
         return "yes" if v else "no"
-    if isinstance(v, float):
-        return f"{v:,.6g}" if abs(v) >= 1000 else f"{v:.6g}"
+    if isinstance(v, float):  # as docs_figures.py rounded it: 27.0 stays 27.0
+        return f"{v:,}" if abs(v) >= 10000 else (repr(v) if "e" not in repr(v) else f"{v:.10f}".rstrip("0"))
     if isinstance(v, int):
         return f"{v:,}"
     if isinstance(v, str):
