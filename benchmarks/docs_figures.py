@@ -223,9 +223,47 @@ def calibrate(tmp: Path) -> dict:
     return out
 
 
+def wrist(tmp: Path) -> dict:
+    """The wrist pairs' check: poses, the least engaged volume, bend and twist play over the bend."""
+    rows = []
+    for name in ("wrist_sphere", "wrist_quasi_ellipsoid"):
+        f = partgen("check", f"configs/{name}.yaml", "--no-plates", "-o", str(tmp / name))["figures"]
+        play = f["play"]
+        bend = [p["bend_play_deg"] for p in play]
+        rows.append([f"`{name}.yaml`", f["poses"], r(f["min_engaged_mm3"], 0), f"{min(bend)}–{max(bend)}",
+                     play[0]["twist_play_deg"], play[-1]["twist_play_deg"], play[-1]["theta_deg"]])
+    return {"table": table(["design", "poses", "least engaged mm³", "bend play °", "twist play at the pole °",
+                            "twist play at the edge °", "edge θ °"], rows)}
+
+
+def printers(tmp: Path) -> dict:
+    """Which shipped printers each shipped design passes ``partgen check`` on, as it is (the wrist
+    pairs left out: their check takes minutes each)."""
+    rows = []
+    for cfg in sorted((ROOT / "configs").glob("*.yaml")):
+        if cfg.stem.startswith("wrist"):
+            continue
+        row = [f"`{cfg.name}`"]
+        for p in PRINTERS:
+            out = partgen("check", f"configs/{cfg.name}", "--printer", p, "--no-plates", "-o",
+                          str(tmp / cfg.stem / p), ok=(0, 1, 2))
+            if out.get("ok"):
+                row.append("✓")
+            elif "error" in out:
+                row.append("refused")
+            else:
+                failed = dict.fromkeys(f.get("rule") or f.get("check") for f in out.get("findings", [])
+                                       if f.get("severity") == "fail")
+                row.append("✗ " + ", ".join(str(k) for k in failed))
+        rows.append(row)
+        print(f"  {cfg.name}: {' | '.join(row[1:])}", file=sys.stderr, flush=True)
+    return {"table": table(["design", *[f"`{p}`" for p in PRINTERS]], rows)}
+
+
 SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
             "tolerance": tolerance, "sweep": sweep, "bennett": bennett,
-            "calibrate": calibrate}
+            "calibrate": calibrate, "wrist": wrist,
+            "printers": printers}
 
 
 def main(argv=None) -> int:
