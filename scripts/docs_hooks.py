@@ -1,17 +1,26 @@
 """mkdocs hook: the reference pages the code knows, generated at every docs build (never a
 hand-kept copy): the config reference of every kind from its pydantic schema (every field with its
 description, unit and default), the printer profile fields, the shipped printers, every command's
-options from the CLI's own parser, and the manifest schema.
+options from the CLI's own parser, the manifest schema, and the figures the pages state.
 
-Generated pages are added to the site as virtual files (nothing is written into docs/)."""
+Generated pages are added to the site as virtual files (nothing is written into docs/).
+
+Pages never type a measured figure by hand: they write ``{{ fig.section.key }}`` (a number or a word)
+or ``{{ table.section.name }}`` (a Markdown table), filled in from docs/figures.json, which
+benchmarks/docs_figures.py writes by running the shipped designs; ``{{ gen.name }}`` is a block made
+from the code at build time (the architecture page's picture of the layers from tests/test_layers.py's
+``ALLOWED``). An unknown key fails the build."""
 
 from __future__ import annotations
 
+import ast
 import json
+import re
 import types
 import typing
 from pathlib import Path
 
+from mkdocs.exceptions import PluginError
 from mkdocs.structure.files import File
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -177,8 +186,217 @@ def manifest_page() -> str:
     return "\n".join(out) + "\n"
 
 
+FIGURES = ROOT / "docs" / "figures.json"
+PLACEHOLDER = re.compile(r"\{\{\s*(fig|table|gen)\.([A-Za-z0-9_.]+)\s*\}\}")
+
+
+def figures() -> dict:
+    return json.loads(FIGURES.read_text()) if FIGURES.exists() else {}
+
+
+def _lookup(data: dict, key: str):
+    for part in key.split("."):
+        if not isinstance(data, dict) or part not in data:
+            raise KeyError(key)
+        data = data[part]
+    return data
+
+
+def _scalar(v) -> str:
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, float):  # as docs_figures.py rounded it: 27.0 stays 27.0
+        return f"{v:,}" if abs(v) >= 10000 else (repr(v) if "e" not in repr(v) else f"{v:.10f}".rstrip("0"))
+    if isinstance(v, int):
+        return f"{v:,}"
+    if isinstance(v, str):
+        return v
+    raise TypeError(f"not a scalar: {type(v).__name__}")
+
+
+def _table(t: dict, section: str, where: str = "") -> str:
+    cell = lambda v: _scalar(v).replace("|", "\\|")  # noqa: E731
+    run = figures().get(section, {}).get("_run", {})
+    out = ["| " + " | ".join(t["columns"]) + " |", "|" + "---|" * len(t["columns"])]
+    out += ["| " + " | ".join(cell(v) for v in row) + " |" for row in t["rows"]]
+    out += ["", f"*Measured by `benchmarks/docs_figures.py` ({section}, {run.get('date', '?')}); "
+                f"see [Figures]({'../' * where.count('/')}reference/figures.md).*"]
+    return "\n".join(out)
+
+
+def allowed_layers() -> dict[str, set[str]]:
+    """tests/test_layers.py's ``ALLOWED`` table, read (not imported: it is a test module)."""
+    tree = ast.parse((ROOT / "tests" / "test_layers.py").read_text())
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "ALLOWED" for t in node.targets):
+            return ast.literal_eval(node.value)
+    raise PluginError("tests/test_layers.py has no ALLOWED table")
+
+
+def _node(unit: str) -> str:
+    label = {"__init__": "partgen/__init__.py", "__main__": "python -m partgen"}.get(unit)
+    if label is None:
+        label = f"{unit}/" if (ROOT / "partgen" / unit).is_dir() else f"{unit}.py"
+    return f'{unit.strip("_") or "pkg"}_["{label}"]'
+
+
+def layers_graph() -> str:
+    """A mermaid graph: an arrow from each unit to every unit it may import (``errors``, which every
+    unit may import, left out)."""
+    allowed = allowed_layers()
+    lines = ["```mermaid", "graph TD"]
+    for unit in allowed:
+        if unit == "errors":
+            continue
+        lines.append(f"  {_node(unit)}")
+    for unit, deps in allowed.items():
+        for dep in sorted(deps - {"errors"}):
+            lines.append(f"  {_node(unit).split('[')[0]} --> {_node(dep).split('[')[0]}")
+    lines.append("```")
+    return "\n".join(lines)
+
+
+def layers_table() -> str:
+    allowed = allowed_layers()
+    rows = ["| unit | may import from partgen |", "|---|---|"]
+    for unit, deps in allowed.items():
+        rows.append(f"| `{_node(unit).split(chr(34))[1]}` | {', '.join(f'`{d}`' for d in sorted(deps)) or 'nothing'} |")
+    return "\n".join(rows)
+
+
+def _first_sentence(path: Path) -> str:
+    """The first paragraph of a module's docstring, cut at a sentence's end near 240 characters."""
+    try:
+        doc = ast.get_docstring(ast.parse(path.read_text())) or ""
+    except (SyntaxError, FileNotFoundError):
+        return ""
+    text = " ".join(doc.split("\n\n")[0].split())
+    if len(text) > 240:
+        cut = max(text.rfind(". ", 0, 240), text.rfind("; ", 0, 240))
+        text = text[:cut + 1] if cut > 60 else text[:text.rfind(" ", 0, 240)] + " …"
+    return text.replace("``", "`").replace("|", "\\|")
+
+
+def modules_list() -> str:
+    """Every unit's modules with the first sentence of their docstrings."""
+    pkg = ROOT / "partgen"
+    out = []
+    for unit in allowed_layers():
+        d = pkg / unit
+        if d.is_dir():
+            out += [f"### `{unit}/`", "", _first_sentence(d / "__init__.py") or "(no package docstring)", ""]
+            for f in sorted(d.glob("*.py")):
+                if f.name != "__init__.py":
+                    out.append(f"- `{f.name}` — {_first_sentence(f)}")
+            for sub in sorted(p for p in d.iterdir() if p.is_dir() and (p / "__init__.py").exists()):
+                mods = ", ".join(f"`{f.name}`" for f in sorted(sub.glob("*.py")) if f.name != "__init__.py")
+                out.append(f"- `{sub.name}/` — {_first_sentence(sub / '__init__.py')} ({mods})")
+            out.append("")
+        elif (pkg / f"{unit}.py").exists():
+            out += [f"### `{unit}.py`", "", _first_sentence(pkg / f"{unit}.py"), ""]
+    return "\n".join(out)
+
+
+def registry_list() -> str:
+    from partgen.mechanisms import REGISTRY
+
+    return ", ".join(f"`{k}`" for k in REGISTRY)
+
+
+KIND_PAGES = {"gear_chain": "mechanisms/gear_chain.md", "wrist": "mechanisms/wrist.md",
+              "bennett_butterfly": "mechanisms/bennett_butterfly.md", "gear_pair": "mechanisms/gear_pair.md",
+              "gear_train": "mechanisms/gear_train.md"}
+
+
+def configs_table(where: str = "") -> str:
+    """The shipped designs: file, kind, printer and description, read from configs/*.yaml."""
+    import yaml
+
+    up = "../" * where.count("/")
+    rows = ["| design | kind | printer | what it is |", "|---|---|---|---|"]
+    for p in sorted((ROOT / "configs").glob("*.yaml")):
+        d = yaml.safe_load(p.read_text()) or {}
+        kind = d.get("kind", "")
+        page = "mechanisms/belt.md" if "belts" in d else KIND_PAGES.get(kind)
+        link = f"[`{kind}`]({up}{page})" if page else f"`{kind}`"
+        rows.append(f"| `configs/{p.name}` | {link} | `{d.get('printer', '')}` | "
+                    f"{' '.join(str(d.get('description', '')).split())} |")
+    return "\n".join(rows)
+
+
+GENERATED = {"configs": configs_table, "layers_graph": layers_graph, "layers_table": layers_table, "modules": modules_list,
+             "kinds": registry_list}
+
+
+def fill(markdown: str, where: str) -> str:
+    """Put the figures and generated blocks into a page; an unknown key is an error naming the page."""
+    data = figures()
+
+    def one(m) -> str:
+        kind, key = m.groups()
+        try:
+            if kind == "gen":
+                make = GENERATED[key]
+                return make(where) if "where" in make.__code__.co_varnames else make()
+            value = _lookup(data, key)
+            if kind == "table":
+                return _table(value, key.split(".")[0], where)
+            return _scalar(value)
+        except (KeyError, TypeError) as e:
+            raise PluginError(f"{where}: {{{{ {kind}.{key} }}}}: no such figure in docs/figures.json ({e}); "
+                              "run benchmarks/docs_figures.py") from None
+
+    return PLACEHOLDER.sub(one, markdown)
+
+
+def figures_page() -> str:
+    data = figures()
+    out = ["# Figures", "", "Every measured figure the pages state, as `benchmarks/docs_figures.py` last wrote it "
+           "into `docs/figures.json` (it runs the shipped designs through the commands, in fresh processes). "
+           "Rerun it after a change that moves a figure.", ""]
+    for section, values in data.items():
+        run = values.get("_run", {})
+        doc = getattr(__import__("docs_figures").SECTIONS.get(section), "__doc__", "") if _bench() else ""
+        out += [f"## {section}", "", doc or "", "",
+                f"Run {run.get('date', '?')} with partgen {run.get('partgen', '?')} in {run.get('seconds', '?')} s.", "",
+                "| figure | value |", "|---|---|"]
+
+        def walk(d, prefix):
+            for k, v in d.items():
+                if k == "_run":
+                    continue
+                if isinstance(v, dict) and "columns" in v:
+                    out.append(f"| `table.{prefix}{k}` | (a table of {len(v['rows'])} rows) |")
+                elif isinstance(v, dict):
+                    walk(v, f"{prefix}{k}.")
+                else:
+                    out.append(f"| `fig.{prefix}{k}` | {_scalar(v)} |")
+
+        walk(values, f"{section}.")
+        out.append("")
+    return "\n".join(out)
+
+
+def _bench() -> bool:
+    import sys
+
+    path = str(ROOT / "benchmarks")
+    if path not in sys.path:
+        sys.path.insert(0, path)
+    try:
+        __import__("docs_figures")
+        return True
+    except ImportError:
+        return False
+
+
 PAGES = {"reference/config.md": config_reference, "reference/printers.md": printers_page,
-         "reference/commands.md": commands_page, "reference/manifest.md": manifest_page}
+         "reference/commands.md": commands_page, "reference/manifest.md": manifest_page,
+         "reference/figures.md": figures_page}
+
+
+def on_page_markdown(markdown, page, config, files):
+    return fill(markdown, page.file.src_uri)
 
 
 def on_files(files, config):

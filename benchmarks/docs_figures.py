@@ -1,0 +1,295 @@
+"""Measure every figure the docs state and write them to docs/figures.json.
+
+The docs never type a measured figure by hand: a page writes ``{{ fig.section.key }}`` (a number or a
+word) or ``{{ table.name }}`` (a Markdown table), and the docs build (scripts/docs_hooks.py) puts in
+what this script measured; an unknown key fails the strict build. Each section runs the commands a
+user would (``partgen … --json``) on the shipped designs, in fresh processes, and keeps what they
+print, rounded for reading.
+
+    .venv/bin/python benchmarks/docs_figures.py                  # every section (a few minutes)
+    .venv/bin/python benchmarks/docs_figures.py --only gear_pair # one section; the others are kept
+    .venv/bin/python benchmarks/docs_figures.py --list           # the sections
+
+Run it after a change that moves a figure (a design, a check, the tolerance model) and commit
+docs/figures.json with the change. Every section records when it ran, with which partgen, and how long
+it took (``fig.<section>._run``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+OUT = ROOT / "docs" / "figures.json"
+PRINTERS = sorted(p.stem for p in (ROOT / "partgen" / "printers").glob("*.yaml"))
+
+
+def partgen(*args: str, ok=(0,)) -> dict:
+    """``partgen ARGS --json`` in a fresh process; its JSON object."""
+    cmd = [sys.executable, "-m", "partgen", *args, "--json"]
+    p = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    if p.returncode not in ok:
+        raise SystemExit(f"{' '.join(cmd[2:])}: exit {p.returncode}\n{p.stdout[-2000:]}\n{p.stderr[-2000:]}")
+    return json.loads(p.stdout)
+
+
+def r(x: float, digits: int = 2) -> float | int:
+    """Rounded for reading (``-0.0`` never shows; 0 digits gives a whole number)."""
+    return int(round(float(x))) if digits <= 0 else round(float(x), digits) + 0.0
+
+
+def pct(p: float, digits: int = 1) -> float:
+    return r(100 * p, digits)
+
+
+def table(columns: list[str], rows: list[list]) -> dict:
+    return {"columns": columns, "rows": rows}
+
+
+def manifest(tmp: Path, config: str, *extra: str) -> dict:
+    dest = tmp / Path(config).stem
+    partgen("build", config, "-o", str(dest), *extra)
+    return json.loads((dest / "manifest.json").read_text())
+
+
+# --- sections ---------------------------------------------------------------------------------------
+
+def chain(tmp: Path) -> dict:
+    """The default chain against the paper's, the pruned curve, the belt variant, the desktop kit."""
+    t = partgen("trace", "configs/butterfly.yaml", "-o", str(tmp / "trace"))
+    pruned = t["pruned_vs_full"]
+    ours = manifest(tmp, "configs/butterfly.yaml")["design"]
+    paper = manifest(tmp, "configs/butterfly_liu2017.yaml")["design"]
+    rows = []
+    for a, b in zip(paper["stages"], ours["stages"]):
+        ta, tb = a["teeth"], b["teeth"]
+        same = [k for k in "DMG" if ta[k] == tb[k]]
+        rows.append([a["j"], a["ratio"], "/".join(str(ta[k]) for k in "DMG"), "/".join(str(tb[k]) for k in "DMG"),
+                     "all" if len(same) == 3 else ", ".join(same) or "none"])
+    belt = partgen("trace", "configs/butterfly_belt.yaml", "-o", str(tmp / "belt_trace"))["vs_pruned"]
+    modules = []
+    for p in PRINTERS:
+        dest = tmp / p
+        b = partgen("build", "configs/butterfly_desktop.yaml", "-o", str(dest), "--printer", p, ok=(0, 2))
+        if b.get("ok") is False and "error" in b:
+            modules.append([f"`{p}`", "refused: " + b["error"]["message"].split(": ", 2)[-1]])
+        else:
+            modules.append([f"`{p}`", json.loads((dest / "manifest.json").read_text())["design"]["module_mm"]])
+    return {
+        "links": len(t["speeds"]),
+        "pruned_max_mm": r(pruned["max_deviation_mm"], 1), "pruned_rms_mm": r(pruned["rms_mm"], 1),
+        "pruned_hausdorff_mm": r(pruned["hausdorff_mm"], 1),
+        "default_module_mm": ours["module_mm"], "paper_module_mm": paper["module_mm"],
+        "teeth": table(["link j", "Eq 11 ratio", "paper D/M/G", "default D/M/G", "same as the paper"], rows),
+        "belt_max_mm": r(belt["max_deviation_mm"], 3), "belt_rms_mm": r(belt["rms_mm"], 2),
+        "desktop_modules": table(["printer", "module chosen (mm)"], modules),
+    }
+
+
+def drawn(tmp: Path) -> dict:
+    """The shipped drawings: links kept and the measured deviation of the kit's pen from the drawing."""
+    rows, out = [], {}
+    for name in ("heart", "star", "letter_e"):
+        t = partgen("trace", f"configs/{name}.yaml", "-o", str(tmp / name))
+        rows.append([f"`{name}.yaml`", t["drawing"], t["drawing_samples"], t["parametrisation"], len(t["speeds"]),
+                     r(t["hausdorff_mm"], 1), r(t["max_deviation_mm"], 1), r(t["rms_mm"], 1)])
+        out[name] = {"links": len(t["speeds"]), "hausdorff_mm": r(t["hausdorff_mm"], 1)}
+    out["table"] = table(["design", "drawing", "samples", "by", "links", "Hausdorff mm", "max, same θ mm", "RMS mm"],
+                         rows)
+    return out
+
+
+def gear_pair(tmp: Path) -> dict:
+    """The gear pair's measured backlash and transmission error, and its tolerance study."""
+    t = partgen("trace", "configs/gear_pair.yaml", "-o", str(tmp / "trace"))
+    tol = partgen("tolerance", "configs/gear_pair.yaml", "--samples", "20000", "--workers", "1", "-o",
+                  str(tmp / "tol"))
+    wide = partgen("tolerance", "configs/gear_pair.yaml", "--samples", "20000", "--workers", "1",
+                   "--accuracy-mm", "0.3", "-o", str(tmp / "tol3"))
+    kinds = {k["kind"]: k["share"] for k in tol["sensitivity"]["by_kind"]}
+    return {
+        "backlash_min_mm": r(t["backlash_mm"]["min"], 3), "backlash_max_mm": r(t["backlash_mm"]["max"], 3),
+        "te_pp_um": r(1000 * t["transmission_error_mm"]["peak_to_peak"], 1),
+        "tol_samples": tol["samples"], "tol_accuracy_mm": tol["accuracy_mm"],
+        "p_jam_pct": pct(tol["overall"]["probability"], 2),
+        "p_jam_mesh_pct": pct(tol["groups"]["mesh"]["probability"], 2),
+        "tooth_share_pct": pct(kinds.get("tooth", 0), 0), "position_share_pct": pct(kinds.get("position", 0), 0),
+        "p_jam_03_pct": pct(wide["overall"]["probability"], 1),
+    }
+
+
+def gear_train(tmp: Path) -> dict:
+    """Each shipped train traced on its printed outlines."""
+    rows = []
+    for name in ("reducer", "herringbone", "planetary", "rack"):
+        t = partgen("trace", f"configs/gear_train_{name}.yaml", "-o", str(tmp / name))
+        if "backlash_arcmin" in t:
+            te = f"{r(t['transmission_error_arcmin']['peak_to_peak'])} arcmin"
+            bl = f"{r(t['backlash_arcmin']['min'], 1)}–{r(t['backlash_arcmin']['max'], 1)} arcmin"
+            ratio = f"{t['ratio_measured']:.5f} (design {r(t['ratio_design'], 4)})"
+        else:
+            te = f"{r(t['transmission_error_um']['peak_to_peak'], 1)} µm"
+            bl = f"{r(t['backlash_mm']['min'], 3)}–{r(t['backlash_mm']['max'], 3)} mm"
+            ratio = f"{t['ratio_measured']:.5f} {t.get('ratio_unit', '')} (design {r(t['ratio_design'], 4)})"
+        rows.append([f"`gear_train_{name}`", ratio, te, bl, t["samples"]])
+    return {"trace": table(["design", "ratio measured", "TE peak to peak", "backlash at the output", "angles"], rows)}
+
+
+def tolerance(tmp: Path) -> dict:
+    """P(jam) of the default chain and of the paper's design as printed."""
+    out = {}
+    for name in ("butterfly", "butterfly_liu2017"):
+        t = partgen("tolerance", f"configs/{name}.yaml", "--samples", "10000", "--seed", "0", "-o", str(tmp / name))
+        units = sorted(t["units"], key=lambda u: -u["probability"])
+        worst = units[0]
+        kinds = {k["kind"]: k["share"] for k in t["sensitivity"]["by_kind"]}
+        g = t["groups"]
+        joints = [u for u in t["units"] if u["group"] == "joint"]
+        meshes = [u for u in t["units"] if u["group"] == "mesh"]
+        out[name] = {
+            "samples": t["samples"], "accuracy_mm": t["accuracy_mm"],
+            "p_jam_pct": pct(t["overall"]["probability"], 0),
+            "joint_pct": pct(g["joint"]["probability"], 1), "mesh_pct": pct(g["mesh"]["probability"], 1),
+            "joints": len(joints), "meshes": len(meshes),
+            "joint_each_pct": f"{pct(min(u['probability'] for u in joints))}–{pct(max(u['probability'] for u in joints))}"
+            if joints else "–",
+            "mesh_each_pct": f"{pct(min(u['probability'] for u in meshes))}–{pct(max(u['probability'] for u in meshes))}"
+            if meshes else "–",
+            "worst_unit": worst["unit"], "worst_pct": pct(worst["probability"]),
+            "worst_ci_pct": f"{pct(worst['ci95'][0])}–{pct(worst['ci95'][1])}",
+            "tooth_share_pct": pct(kinds.get("tooth", 0), 0), "position_share_pct": pct(kinds.get("position", 0), 0),
+        }
+    return out
+
+
+def sweep(tmp: Path) -> dict:
+    """The backlash × running-fit trade-off of the default chain."""
+    s = partgen("sweep", "configs/butterfly.yaml", "--vary", "gears.backlash_per_gear_mm=0.05:0.15:3", "--vary",
+                "joints.running_clearance_diametral_mm=0.1:0.3:3", "--tolerance-samples", "2000", "-o",
+                str(tmp / "sweep"))
+    rows = []
+    for row in s["rows"]:
+        v, p = row["values"], row.get("jam_probability")
+        rows.append([v["gears.backlash_per_gear_mm"], v["joints.running_clearance_diametral_mm"], row["status"],
+                     f"{pct(p)} %" if p is not None else "–", row.get("mass_g", "–")])
+    return {"points": s["points"], "pass": s["pass"], "samples": 2000,
+            "table": table(["backlash per gear mm", "running fit mm (diametral)", "check", "P(jam)", "mass g"], rows)}
+
+
+def bennett(tmp: Path) -> dict:
+    """The Bennett butterfly's balance, clearance, stance and pins, from its check."""
+    f = partgen("check", "configs/bennett_butterfly.yaml", "-o", str(tmp / "kit"), "--no-plates")["figures"]
+    b, base = f["balance_mm"], f["base"]
+    short = [v for k, v in b.items() if k.startswith("one_slug_short")]
+    pins = sorted(f["pins"]["count_by_length"].items(), key=lambda kv: float(kv[0]))
+    return {
+        "com_printed_mm": float(f"{b['fdm']:.1g}"), "com_solid_mm": r(b["solid"]),
+        "com_infill_error_mm": r(b["fdm_infill_error"]), "com_no_binder_mm": r(b["no_binder"]),
+        "com_slug_short_mm": f"{r(min(short), 0)}–{r(max(short), 0)}",
+        "least_clearance_mm": r(f["least_clearance_mm"]), "least_clearance_parts": " and ".join(f["least_clearance_parts"]),
+        "step_deg": r(f["step_deg"]), "free_from_deg": r(f["free_range_deg"][0], 1),
+        "free_to_deg": r(f["free_range_deg"][1], 1),
+        "tip_angle_deg": r(base["tip_angle_deg"], 0), "com_margin_mm": r(base["margin_mm"], 0),
+        "com_height_mm": r(base["com_height_mm"], 0), "links_above_table_mm": r(base["links_above_table_mm"], 0),
+        "total_g": r(base["total_g"], 0),
+        "pins": ", ".join(f"{n} × {float(length):g}" for length, n in pins),
+        "pin_count": sum(n for _, n in pins),
+    }
+
+
+def calibrate(tmp: Path) -> dict:
+    """The gear pair on the MK4 with the example coupon's biases, compensated in the STLs and not."""
+    import yaml
+
+    prof = tmp / "mk4_measured.yaml"
+    partgen("calibrate", "--printer", "prusa_mk4", "configs/calibration/example_results.yaml", "-o", str(prof))
+    raw = yaml.safe_load(prof.read_text())
+    raw.setdefault("biases", {})["compensate"] = False
+    loose = tmp / "mk4_uncompensated.yaml"
+    loose.write_text(yaml.safe_dump(raw, sort_keys=False))
+    out = {}
+    for key, profile in (("compensated", prof), ("uncompensated", loose)):
+        t = partgen("tolerance", "configs/gear_pair.yaml", "--printer", str(profile), "--samples", "20000",
+                    "--workers", "1", "-o", str(tmp / key))
+        out[f"p_jam_{key}_pct"] = pct(t["overall"]["probability"], 2)
+    out["samples"] = 20000
+    return out
+
+
+def wrist(tmp: Path) -> dict:
+    """The wrist pairs' check: poses, the least engaged volume, bend and twist play over the bend."""
+    rows = []
+    for name in ("wrist_sphere", "wrist_quasi_ellipsoid"):
+        f = partgen("check", f"configs/{name}.yaml", "--no-plates", "-o", str(tmp / name))["figures"]
+        play = f["play"]
+        bend = [p["bend_play_deg"] for p in play]
+        rows.append([f"`{name}.yaml`", f["poses"], r(f["min_engaged_mm3"], 0), f"{min(bend)}–{max(bend)}",
+                     play[0]["twist_play_deg"], play[-1]["twist_play_deg"], play[-1]["theta_deg"]])
+    return {"table": table(["design", "poses", "least engaged mm³", "bend play °", "twist play at the pole °",
+                            "twist play at the edge °", "edge θ °"], rows)}
+
+
+def printers(tmp: Path) -> dict:
+    """Which shipped printers each shipped design passes ``partgen check`` on, as it is (the wrist
+    pairs left out: their check takes minutes each)."""
+    rows = []
+    for cfg in sorted((ROOT / "configs").glob("*.yaml")):
+        if cfg.stem.startswith("wrist"):
+            continue
+        row = [f"`{cfg.name}`"]
+        for p in PRINTERS:
+            out = partgen("check", f"configs/{cfg.name}", "--printer", p, "--no-plates", "-o",
+                          str(tmp / cfg.stem / p), ok=(0, 1, 2))
+            if out.get("ok"):
+                row.append("✓")
+            elif "error" in out:
+                row.append("refused")
+            else:
+                failed = dict.fromkeys(f.get("rule") or f.get("check") for f in out.get("findings", [])
+                                       if f.get("severity") == "fail")
+                row.append("✗ " + ", ".join(str(k) for k in failed))
+        rows.append(row)
+        print(f"  {cfg.name}: {' | '.join(row[1:])}", file=sys.stderr, flush=True)
+    return {"table": table(["design", *[f"`{p}`" for p in PRINTERS]], rows)}
+
+
+SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
+            "tolerance": tolerance, "sweep": sweep, "bennett": bennett,
+            "calibrate": calibrate, "wrist": wrist,
+            "printers": printers}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--only", nargs="+", choices=sorted(SECTIONS), help="run these sections; keep the others")
+    ap.add_argument("--list", action="store_true", help="list the sections and exit")
+    a = ap.parse_args(argv)
+    if a.list:
+        for k, f in SECTIONS.items():
+            print(f"{k:12} {f.__doc__}")
+        return 0
+    from partgen import __version__
+
+    for name in a.only or list(SECTIONS):
+        t0 = time.perf_counter()
+        print(f"{name} …", file=sys.stderr, flush=True)
+        with tempfile.TemporaryDirectory(prefix=f"docs_figures_{name}_") as tmp:
+            section = SECTIONS[name](Path(tmp))
+        section["_run"] = {"date": datetime.date.today().isoformat(), "partgen": __version__,
+                           "seconds": r(time.perf_counter() - t0, 1)}
+        print(f"{name}: {section['_run']['seconds']} s", file=sys.stderr, flush=True)
+        figures = json.loads(OUT.read_text()) if OUT.exists() else {}  # read now: keep what others wrote
+        figures[name] = section
+        OUT.write_text(json.dumps(figures, indent=1, ensure_ascii=False, sort_keys=True) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
