@@ -99,8 +99,8 @@ class Printer(Strict):
     name: Annotated[str, Field(min_length=1, max_length=200)]
     """The printer's name, as reports, plates and the manifest show it."""
     build_envelope_mm: Annotated[list[Length], Field(min_length=3, max_length=3)]
-    """Build volume [x, y, z], as the maker publishes it: build refuses a part larger in every orientation; check packs the
-    build plates on x × y and holds part heights to z."""
+    """Build volume [x, y, z], as the maker publishes it: build refuses a part larger in every orientation; check
+    packs the build plates on x × y and holds part heights to z."""
     nozzle_diameter_mm: Length = Field(0.4, description="the nozzle's bore")
     line_width_mm: Length | None = Field(None, description="width of one extruded line (road)")
     resolution_mm: Length | None = Field(None, description="old name of line_width_mm (read only when that is absent)")
@@ -119,8 +119,8 @@ class Printer(Strict):
         7.0, description="room left between the parts and the bed's edge on a build plate, for the slicer's "
         "skirt or brim (PrusaSlicer's default skirt lies 6 mm out from the parts and is one line wide)")
     fits: Fits | None = None
-    """Clearances measured on this printer: what `printer` means as a design's clearance value (none: a design may not say
-    `printer`)."""
+    """Clearances measured on this printer: what `printer` means as a design's clearance value (none: a design may
+    not say `printer`)."""
     biases: Biases | None = None
     """Mean printed-minus-modelled size errors (partgen calibrate); none: no compensation."""
     measured: bool = Field(False, description="fits, accuracy and biases were measured on this machine (false: "
@@ -163,5 +163,5 @@ class ToleranceTarget(Strict):
     printer (the linear study, gears seated by their meshes)."""
 
     max_jam_probability: Annotated[float, Field(gt=0, le=1)] = 0.01
-    """Largest acceptable probability (0–1) that a print on the design's printer jams: `backlash_per_gear_mm: auto` chooses
-    the least play meeting it, and check warns above it."""
+    """Largest acceptable probability (0–1) that a print on the design's printer jams: `backlash_per_gear_mm: auto`
+    chooses the least play meeting it, and check warns above it."""

@@ -21,15 +21,15 @@ class PairGears(Strict):
     face_width_mm: Length = 8.0
     """Gear thickness along the axles."""
     backlash_per_gear_mm: Gap | Literal["auto"] = 0.1
-    """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so the pair at its zero-backlash
-    centre distance has the sum of both as circumferential backlash; auto: the least that meets
+    """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so the pair at its
+    zero-backlash centre distance has the sum of both as circumferential backlash; auto: the least that meets
     tolerance.max_jam_probability on the printer."""
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1.0, le=1.0)] = "auto"
-    """Profile shift coefficient (× module) of both gears; auto: the smallest shift that avoids undercut (0 at and above
-    the undercut limit). The posts sit at the shifted pair's zero-backlash centre distance."""
+    """Profile shift coefficient (× module) of both gears; auto: the smallest shift that avoids undercut (0 at and
+    above the undercut limit). The posts sit at the shifted pair's zero-backlash centre distance."""
     chord_tolerance_mm: Length = 0.01
-    """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips; smaller
-    is smoother and heavier STLs."""
+    """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
+    smaller is smoother and heavier STLs."""
 
 
 class Axles(Strict):
@@ -60,13 +60,13 @@ class GearPairDesign(Strict):
     kind: Literal["gear_pair"]
     """The mechanism this file designs: `gear_pair` selects these keys."""
     name: Name
-    """The design's name and its default output folder out/<name>/: a plain file name (letters, digits, _ . -; at most 100
-    characters)."""
+    """The design's name and its default output folder out/<name>/: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
     description: Text = ""
     """Free text about the design for whoever reads the file (partgen does not use it)."""
     printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile in the
-    design's folder, relative to it (--printer overrides it)."""
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
     gears: PairGears
     """The two spur gears: tooth system, teeth, face width and play."""
     axles: Axles = Axles()
