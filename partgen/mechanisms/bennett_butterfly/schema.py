@@ -168,7 +168,7 @@ class BennettDesign(Strict):
     kind: Literal["bennett_butterfly"]
     """The mechanism this file designs: `bennett_butterfly` selects these keys."""
     name: Name
-    """The design's name and its default output folder out/<name>/: a plain file name (letters, digits, _ . -; at
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
     most 100 characters)."""
     description: Text = ""
     """Free text about the design for whoever reads the file (partgen does not use it)."""

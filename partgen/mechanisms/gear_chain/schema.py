@@ -326,7 +326,7 @@ class Design(Strict):
     kind: Literal["gear_chain"]
     """The mechanism this file designs: `gear_chain` selects these keys."""
     name: Name
-    """The design's name and its default output folder out/<name>/: a plain file name (letters, digits, _ . -; at
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
     most 100 characters)."""
     description: Text = ""
     """Free text about the design for whoever reads the file (partgen does not use it)."""

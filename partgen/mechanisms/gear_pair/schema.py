@@ -60,7 +60,7 @@ class GearPairDesign(Strict):
     kind: Literal["gear_pair"]
     """The mechanism this file designs: `gear_pair` selects these keys."""
     name: Name
-    """The design's name and its default output folder out/<name>/: a plain file name (letters, digits, _ . -; at
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
     most 100 characters)."""
     description: Text = ""
     """Free text about the design for whoever reads the file (partgen does not use it)."""
