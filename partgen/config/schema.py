@@ -2,7 +2,8 @@
 Each mechanism's own design schema lives in its folder (``partgen.mechanisms.<kind>.schema``) (pydantic v2, strict, unknown keys forbidden).
 
 Every length key ends in ``_mm``, every angle in ``_deg``; clearances say ``radial`` or
-``diametral``. Defaults are documented in README's config reference.
+``diametral``. A field's meaning is its docstring (or ``Field(description=...)``): the docs' config
+reference is generated from them.
 """
 
 from __future__ import annotations
@@ -45,7 +46,8 @@ Text = Annotated[str, Field(max_length=10_000)]
 
 
 class Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True, allow_inf_nan=False,
+                              use_attribute_docstrings=True)  # a field's docstring is its description
 
 
 class Fits(Strict):
@@ -77,10 +79,15 @@ class Calibration(Strict):
     """Where a profile's measured values came from (written by ``partgen calibrate``)."""
 
     coupon: Annotated[int, Field(ge=1, le=1000)]
+    """Layout version of the calibration coupon whose results gave these values (partgen coupon's template)."""
     results: Annotated[str, Field(max_length=500)]
+    """File name of the filled-in results.yaml the values were computed from."""
     printed_on: Annotated[str, Field(max_length=100)] | None = None
+    """Date the coupon was printed, as written in the results file (none: not stated)."""
     calibrated_on: Annotated[str, Field(max_length=100)] | None = None
+    """Date partgen calibrate wrote this profile."""
     from_profile: Annotated[str, Field(max_length=200)] | None = None
+    """File name of the profile calibrated (its untouched values were copied from it)."""
 
 
 class Printer(Strict):
@@ -90,7 +97,10 @@ class Printer(Strict):
     min_hole_to_size_diameter_mm."""
 
     name: Annotated[str, Field(min_length=1, max_length=200)]
+    """The printer's name, as reports, plates and the manifest show it."""
     build_envelope_mm: Annotated[list[Length], Field(min_length=3, max_length=3)]
+    """Build volume [x, y, z], as the maker publishes it: build refuses a part larger in every orientation; check
+    packs the build plates on x × y and holds part heights to z."""
     nozzle_diameter_mm: Length = Field(0.4, description="the nozzle's bore")
     line_width_mm: Length | None = Field(None, description="width of one extruded line (road)")
     resolution_mm: Length | None = Field(None, description="old name of line_width_mm (read only when that is absent)")
@@ -109,10 +119,14 @@ class Printer(Strict):
         7.0, description="room left between the parts and the bed's edge on a build plate, for the slicer's "
         "skirt or brim (PrusaSlicer's default skirt lies 6 mm out from the parts and is one line wide)")
     fits: Fits | None = None
+    """Clearances measured on this printer: what `printer` means as a design's clearance value (none: a design may
+    not say `printer`)."""
     biases: Biases | None = None
+    """Mean printed-minus-modelled size errors (partgen calibrate); none: no compensation."""
     measured: bool = Field(False, description="fits, accuracy and biases were measured on this machine (false: "
                            "typical values for its kind)")
     calibration: Calibration | None = None
+    """Where the measured values came from (written by partgen calibrate; none: not calibrated)."""
 
     @model_validator(mode="after")
     def _one_each(self):
@@ -136,7 +150,9 @@ class Printer(Strict):
 
 class Material(Strict):
     name: Annotated[str, Field(min_length=1, max_length=200)]
+    """The material's name (bill of materials, manifest)."""
     density_g_cm3: Density
+    """Density, for the masses in the bill, the manifest and (where a kit balances) the centres of mass."""
 
 
 AUTO_PLAY_START_MM = 0.05  # backlash_per_gear_mm: auto is built and checked at this value first (docs/tolerance.md)
@@ -147,3 +163,5 @@ class ToleranceTarget(Strict):
     printer (the linear study, gears seated by their meshes)."""
 
     max_jam_probability: Annotated[float, Field(gt=0, le=1)] = 0.01
+    """Largest acceptable probability (0–1) that a print on the design's printer jams: `backlash_per_gear_mm: auto`
+    chooses the least play meeting it, and check warns above it."""

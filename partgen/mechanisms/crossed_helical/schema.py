@@ -17,49 +17,89 @@ Fit = Literal["printer"] | Annotated[float, Field(ge=-1, le=5)]
 
 
 class CrossedGears(Strict):
-    # driver (input, gear 1: 1-3 teeth or a transverse pressure angle ≥ 40° make it a ZI worm), driven (output, gear 2)
     teeth: Annotated[list[Starts], Field(min_length=2, max_length=2)]
-    normal_module_mm: Length  # the rack both are cut by
+    """Teeth (starts) of [driver (input, gear 1), driven (output, gear 2)]; gear 1 with 1–3 teeth or a transverse
+    pressure angle of 40° or more is a ZI worm; gear 2 needs at least 4."""
+    normal_module_mm: Length
+    """Normal module of the rack both gears are cut by (each gear's transverse module is this / cos of its helix
+    angle)."""
     normal_pressure_angle_deg: Annotated[float, Field(ge=10.0, le=35.0)] = 20.0
-    helix_angle_deg: Annotated[list[Helix], Field(min_length=2, max_length=2)]  # at the reference cylinders; add up to the shaft angle
+    """Normal pressure angle of that rack; 20 is standard."""
+    helix_angle_deg: Annotated[list[Helix], Field(min_length=2, max_length=2)]
+    """Helix angle of [gear 1, gear 2] at their reference cylinders, both one hand; they must add up to
+    shaft_angle_deg."""
     face_width_mm: Annotated[list[Length], Field(min_length=2, max_length=2)]
-    backlash_per_gear_mm: Gap = 0.1  # transverse thinning of each gear's tooth at its reference pitch circle
-    addendum_coeff: Annotated[float, Field(ge=0.5, le=1.5)] = 1.0  # × the normal module
+    """Face width of [gear 1, gear 2], along each gear's own axis."""
+    backlash_per_gear_mm: Gap = 0.1
+    """Per gear: each tooth is thinned by this transverse arc length at its reference pitch circle; check measures
+    the backlash the pair is left with."""
+    addendum_coeff: Annotated[float, Field(ge=0.5, le=1.5)] = 1.0
+    """Tooth height above the reference circle, × the normal module."""
     dedendum_coeff: Annotated[float, Field(ge=0.8, le=2.0)] = 1.25
+    """Tooth depth below the reference circle, × the normal module."""
     chord_tolerance_mm: Annotated[float, Field(ge=0.001, le=0.1)] = 0.01
+    """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
+    smaller is smoother and heavier STLs."""
 
 
 class CrossedShafts(Strict):
-    diameter_mm: Annotated[list[Length], Field(min_length=2, max_length=2)] = [8.0, 8.0]  # gear 1's post, gear 2's pin
-    running_clearance_diametral_mm: Fit = "printer"  # a gear's bore over its post or pin
-    press_fit_clearance_diametral_mm: Fit = "printer"  # the pin in its blocks
+    diameter_mm: Annotated[list[Length], Field(min_length=2, max_length=2)] = [8.0, 8.0]
+    """Diameters of [gear 1's post (upright on the base), gear 2's pin (held in the two blocks)]."""
+    running_clearance_diametral_mm: Fit = "printer"
+    """Diametral running clearance, a gear's bore minus its post or pin; printer: the printer profile's measured
+    running fit."""
+    press_fit_clearance_diametral_mm: Fit = "printer"
+    """Diametral clearance of gear 2's pin in its blocks' holes (hole minus pin; negative: interference); printer:
+    the printer profile's measured press fit."""
 
 
 class CrossedFrame(Strict):
     base_thickness_mm: Length = 5.0
-    margin_mm: Length = 4.0  # the base beyond gear 1's tip circle and the blocks
-    axial_gap_mm: Length = 0.5  # between a gear and the base or a block
-    block_wall_mm: Length = 4.0  # material round gear 2's pin in its blocks
-    block_thickness_mm: Length = 8.0  # each block, along gear 2's axis
+    """Thickness of the base plate carrying gear 1's post and the blocks."""
+    margin_mm: Length = 4.0
+    """How far the base reaches beyond gear 1's tip circle and the blocks."""
+    axial_gap_mm: Length = 0.5
+    """Gap between a gear and the base or a block (also gear 2's tip circle above the base)."""
+    block_wall_mm: Length = 4.0
+    """Material round gear 2's pin in each of its two blocks."""
+    block_thickness_mm: Length = 8.0
+    """Thickness of each block, along gear 2's axis."""
 
 
 class CrossedChecks(Strict):
-    samples: Annotated[int, Field(ge=4, le=1000)] = 12  # phases over one tooth pitch of gear 1 (exact 3-D tests)
-    friction_coefficient: Annotated[float, Field(ge=0.0, le=1.0)] = 0.15  # sliding along the teeth: efficiency, self-locking
+    samples: Annotated[int, Field(ge=4, le=1000)] = 12
+    """Phases checked over one tooth pitch of gear 1, each an exact 3-D interference and backlash test (--samples
+    overrides it)."""
+    friction_coefficient: Annotated[float, Field(ge=0.0, le=1.0)] = 0.15
+    """Assumed sliding friction coefficient along the teeth, from which check states the efficiency both ways and
+    whether the pair self-locks."""
     plate_margin_mm: Gap = 5.0
+    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 class CrossedHelicalDesign(Strict):
     kind: Literal["crossed_helical"]
+    """The mechanism this file designs: `crossed_helical` selects these keys."""
     name: Name
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
     description: Text = ""
+    """Free text about the design for whoever reads the file (partgen does not use it)."""
     printer: Annotated[str, Field(min_length=1, max_length=500)]
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
     shaft_angle_deg: Annotated[float, Field(ge=45.0, le=90.0)] = 90.0
+    """Angle between the two (skew) shafts; 90 for a worm drive or a right-angle pair."""
     gears: CrossedGears
+    """The two helical gears (or worm and wheel): teeth, rack, helix angles, face widths, play."""
     shafts: CrossedShafts = CrossedShafts()
+    """Gear 1's post, gear 2's pin and their fits."""
     frame: CrossedFrame = CrossedFrame()
+    """The base and the two blocks holding gear 2's pin."""
     checks: CrossedChecks = CrossedChecks()
+    """What partgen check holds the kit to."""
     material: Material
+    """The printing material: its name and density, for the masses."""
 
     @model_validator(mode="after")
     def _angles(self):

@@ -17,17 +17,24 @@ class Polar(Strict):
     """ρ(θ) = constant + Σ sin[k]·sin kθ + cos[k]·cos kθ (curve units)."""
 
     constant: Coeff = 0.0
+    """Constant term of ρ(θ), in curve units (× curve.scale_mm_per_unit at print size)."""
     sin: dict[Annotated[int, Field(ge=1, le=64)], Coeff] = {}
+    """Coefficients of sin kθ, keyed by k (1–64), curve units."""
     cos: dict[Annotated[int, Field(ge=1, le=64)], Coeff] = {}
+    """Coefficients of cos kθ, keyed by k (1–64), curve units."""
 
 
 class Cartesian(Strict):
     """x = Σ a_k cos kθ + b_k sin kθ, y = Σ c_k cos kθ + d_k sin kθ; lists indexed by k from 0."""
 
     a: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    """x's coefficients of cos kθ, k = 0, 1, …, curve units."""
     b: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    """x's coefficients of sin kθ, k = 0, 1, …, curve units."""
     c: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    """y's coefficients of cos kθ, k = 0, 1, …, curve units."""
     d: Annotated[list[Coeff], Field(min_length=1, max_length=65)]
+    """y's coefficients of sin kθ, k = 0, 1, …, curve units."""
 
     @model_validator(mode="after")
     def _same_length(self):
@@ -47,18 +54,35 @@ class Curve(Strict):
     ``max_deviation_mm``."""
 
     polar: Polar | None = None
+    """The curve as a polar Fourier series, ρ(θ)·(cos θ, sin θ)."""
     cartesian: Cartesian | None = None
+    """The curve as a Cartesian Fourier series x(θ), y(θ)."""
     points: FileName | Annotated[list[Point], Field(max_length=100_000)] | None = None
+    """A drawing: a CSV file (header x_mm,y_mm, in the design's folder) or an inline list of [x, y], in mm at print
+    size, in drawing order (at least 16 points)."""
     svg: FileName | None = None
+    """A drawing: an SVG file in the design's folder; its first closed path (or svg_path_id's), y up."""
     svg_path_id: Annotated[str, Field(min_length=1, max_length=200)] | None = None
+    """The id of the SVG path to draw; none: the first closed path."""
     svg_mm_per_unit: Annotated[float, Field(gt=0, le=MAX)] | None = None
+    """Millimetres per SVG user unit; none: from the document's width and height over its viewBox."""
     parametrisation: Literal["samples", "arc_length"] | None = None
+    """How the drawing is timed against the crank: samples (point i at crank angle 2πi/n, as given; the default for
+    points) or arc_length (a steady pace along the curve; the default for svg)."""
     close: bool = False
+    """Join an open drawing's ends with a straight line (else ends farther apart than the largest step are an error)."""
     max_deviation_mm: Annotated[float, Field(ge=0.001, le=MAX)] = 1.0
+    """Budget for a drawing: the largest Hausdorff distance from the chain's path to the drawing; partgen keeps the
+    fewest links that meet it."""
     max_links: Annotated[int, Field(ge=1, le=64)] = 16
-    scale: Ratio | Literal["auto"] = 1.0  # auto: the smallest enlargement that builds (resolve._auto_scale)
+    """Most links the chain drawn from a drawing may have."""
+    scale: Ratio | Literal["auto"] = 1.0
+    """Enlargement of a drawing before its links are chosen; auto: the smallest enlargement (from a fixed ladder,
+    smallest first) with which the kit builds."""
     scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)] | None = None
+    """Print scale of Fourier coefficients: millimetres per curve unit."""
     drop_links: Annotated[list[Annotated[str, Field(max_length=40)]], Field(max_length=200)] = []
+    """Fourier links left out, by name (L_k turns at speed k, M_k at −k: [L2, L10, M8])."""
 
     @property
     def drawn(self) -> bool:
@@ -95,8 +119,11 @@ class Target(Strict):
     """The curve a design table is meant to draw (for `partgen trace`), at print scale."""
 
     polar: Polar | None = None
+    """The target curve as a polar Fourier series."""
     cartesian: Cartesian | None = None
+    """The target curve as a Cartesian Fourier series."""
     scale_mm_per_unit: Annotated[float, Field(ge=0.01, le=MAX)]
+    """Millimetres per curve unit of the target's coefficients."""
 
     @model_validator(mode="after")
     def _one_form(self):
@@ -107,9 +134,14 @@ class Target(Strict):
 
 class LinkRow(Strict):
     name: Annotated[str, Field(min_length=1, max_length=40)]
+    """The link's name (L_k for speed k, M_k for −k by convention); messages and parts use it."""
     speed: Annotated[int, Field(ge=-1000, le=1000)]
+    """The link's angular speed in the world, in turns per crank turn (a non-zero integer; negative: turns
+    backwards)."""
     length_mm: Length
+    """The link's length, joint to joint."""
     initial_angle_deg: Finite
+    """The link's angle in the world at crank angle 0."""
 
     @model_validator(mode="after")
     def _speed(self):
@@ -123,44 +155,81 @@ class StageTeeth(Strict):
     frame: proximal joint at 0, distal at (S, 0)) instead of by circle intersection."""
 
     D: Teeth
+    """Teeth of D_j, fixed to link j − 1's post (the base's ground post for j = 1)."""
     M: Teeth
+    """Teeth of the idler M_j, turning on link j's pin."""
     G: Teeth
+    """Teeth of G_{j+1}, fixed under link j + 1's plate."""
     idler_mm: Annotated[list[Finite], Field(min_length=2, max_length=2)] | None = None
+    """Place idler M_j by hand: its centre [x, y] in link j's frame (proximal joint at 0, distal at (S, 0)); none:
+    where its circles of mesh with D_j and G_{j+1} cross. check verifies it."""
 
 
 class Gears(Strict):
-    module_mm: Length | Literal["auto"]  # auto: the largest module that builds and prints on the printer
+    module_mm: Length | Literal["auto"]
+    """Module shared by all gears (reference pitch diameter / teeth); auto: the largest on a 0.05 mm grid from 0.3 to
+    5 mm with which the chain builds and meets the printer's gear rules (the kit's design.yaml pins it)."""
     pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
+    """Pressure angle of the basic rack; 20 is standard."""
     addendum_coeff: Annotated[float, Field(gt=0, le=2)] = 1.0
+    """Tooth height above the reference circle, × module."""
     dedendum_coeff: Annotated[float, Field(gt=0, le=2.5)] = 1.25
+    """Tooth depth below the reference circle, × module."""
     cutter_tip_radius_coeff: Annotated[float, Field(ge=0, le=0.6)] = 0.38
+    """Tip fillet radius of the rack that cuts the teeth, × module (0.38: ISO 53); it shapes the root fillet."""
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1, le=1.5)] = "auto"
-    backlash_per_gear_mm: Gap | Literal["auto"] = 0.05  # auto: the least that meets tolerance.max_jam_probability
+    """Profile shift coefficient (× module) of every gear; auto: the smallest shift that avoids undercut (0 at and
+    above the undercut limit)."""
+    backlash_per_gear_mm: Gap | Literal["auto"] = 0.05
+    """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so a mesh at its
+    zero-backlash centre distance has the sum of both as circumferential backlash; auto: the least that meets
+    tolerance.max_jam_probability on the printer."""
     face_width_mm: Length
+    """Gear thickness (a gear layer's height)."""
     chord_tolerance_mm: Annotated[float, Field(ge=1e-4, le=0.1)] = 0.001
+    """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
+    smaller is smoother and heavier STLs."""
     hub_wall_mm: Length = 2.5
+    """Least material between a gear's bore and its root circle."""
     tip_gap_mm: Gap = 1.5
+    """Least gap between the tip circles of D_j and G_{j+1} on one link (Eq 12 with margin): what teeth: auto chooses
+    by, and what build warns about."""
     idler_reach_mm: Gap = 1.0
+    """Least margin by which the idler's two centre distances exceed the link's length (Eq 13 with margin; 0: D, M
+    and G in one line): what teeth: auto chooses by, and what build warns about."""
 
 
 class Drive(Strict):
     teeth: Teeth
+    """Teeth of G1 and of the drive gear meshing with it (the same, so one crank turn is one cycle)."""
     angle_deg: Finite = -90.0
+    """Where the drive gear sits round the ground pivot: the direction from G1's centre to its own."""
 
 
 class Plates(Strict):
     thickness_mm: Length
+    """Thickness of every link plate."""
     boss_wall_mm: Length = 4.0
+    """Material round holes, posts and pins (the bosses of plates, base and crank)."""
 
 
 class Joints(Strict):
     axle_diameter_mm: Length
+    """Diameter of every post, pin and axle."""
     running_clearance_radial_mm: Finite | None = None
-    # ``printer``: the fit the printer profile's maker measured (its fits.*_diametral_mm)
+    """Radial running clearance of the revolute joints, bore minus axle on each side (give this or
+    running_clearance_diametral_mm)."""
     running_clearance_diametral_mm: Finite | Literal["printer"] | None = None
+    """Diametral running clearance of the revolute joints, bore minus axle; printer: the printer profile's measured
+    running fit (give this or running_clearance_radial_mm)."""
     press_fit_clearance_radial_mm: Finite | None = None
+    """Radial clearance of the D-fits (parts pressed on a D-flat), hole minus pin on each side; negative:
+    interference (give this or press_fit_clearance_diametral_mm)."""
     press_fit_clearance_diametral_mm: Finite | Literal["printer"] | None = None
+    """Diametral clearance of the D-fits, hole minus pin (negative: interference); printer: the printer profile's
+    measured press fit (give this or press_fit_clearance_radial_mm)."""
     axial_gap_mm: Length = 0.5
+    """Gap between parts that turn against each other along an axle (the thrust rings' height)."""
 
     @model_validator(mode="after")
     def _one_each(self):
@@ -183,30 +252,47 @@ class Joints(Strict):
 
 class Base(Strict):
     thickness_mm: Length = 6.0
+    """Thickness of the base plate."""
     leg_height_mm: Length = 45.0
+    """Height of the four press-fit legs under the base (room for the crank)."""
     crank_radius_mm: Length = 35.0
+    """Crank arm: the handle's distance from the drive axle."""
 
 
 class Pen(Strict):
     diameter_mm: Length = 10.0
+    """Diameter of the pen the holder takes (its bore is 0.2 mm larger, diametral)."""
     holder_height_mm: Length = 20.0
+    """Height of the pen holder above the last plate (its blind bore plus a 2 mm floor)."""
 
 
 class Belts(Strict):
     """Timing belts instead of idler gears: each D_j drives G_{j+1} through a stock closed belt."""
 
     profile: Annotated[str, Field(max_length=40)] = "GT2"
+    """The belt profile's name (bill and manifest; the numbers below define it)."""
     pitch_mm: Length = 2.0
+    """Belt pitch, tooth to tooth along the pitch line."""
     pitch_line_offset_mm: Gap = 0.254
+    """Pulley pitch radius minus its outside radius (the pitch line runs inside the belt's back)."""
     groove_depth_mm: Length = 0.75
+    """Depth of a pulley's tooth space below its outside radius."""
     groove_radius_mm: Length = 0.555
+    """Radius of the arc forming a pulley's tooth space."""
     back_height_mm: Length = 0.63
+    """Height from the belt's pitch line to its back (where a backside tensioner rides)."""
     width_mm: Length = 6.0
+    """Belt width."""
     stock_teeth: Annotated[list[Annotated[int, Field(ge=20, le=5000)]], Field(min_length=1, max_length=1000)]
+    """Closed belt lengths on offer, in teeth: each stage takes the shortest long enough."""
     flange_height_mm: Length = 1.5
+    """How far a pulley's flanges stand out beyond its outside radius."""
     flange_thickness_mm: Length = 1.0
+    """Thickness of each pulley flange."""
     tensioner_radius_mm: Length = 7.0
+    """Radius of a backside tensioner roller."""
     tensioner_gap_mm: Gap = 0.5
+    """Least gap between a tensioner's flanges and a pulley's, and between two pulleys' flanges."""
 
     @model_validator(mode="after")
     def _pitch_line_in_the_back(self):
@@ -220,34 +306,64 @@ class Checks(Strict):
     """What `partgen check` holds a kit to."""
 
     samples: Annotated[int, Field(ge=4, le=10_000)] = 360
+    """Crank angles checked over one cycle (--samples overrides it)."""
     interference_tolerance_mm3: NonNeg = 0.001
+    """Overlap volume between two parts at a sampled angle above which check fails them as colliding (smaller is
+    numerical noise)."""
     min_clearance_mm: Gap = 0.3
+    """Least gap between two parts not meant to touch (meshes and joints have their own checks), in the plane and
+    between layers, over the motion."""
     min_contact_ratio: Pos = 1.2
+    """Least transverse contact ratio of every mesh (1.2: at least 1.2 tooth pairs in contact on average)."""
     min_tip_width_roads: Pos = 3.0
+    """Least tooth tip width, in extruded lines (× the printer's line_width_mm)."""
     plate_margin_mm: Gap = 5.0
+    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 
 class Design(Strict):
     kind: Literal["gear_chain"]
+    """The mechanism this file designs: `gear_chain` selects these keys."""
     name: Name
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
     description: Text = ""
+    """Free text about the design for whoever reads the file (partgen does not use it)."""
     printer: Annotated[str, Field(min_length=1, max_length=500)]
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
     curve: Curve | None = None
+    """The curve the chain draws: Fourier coefficients or a drawing (give curve or links)."""
     links: Annotated[list[LinkRow], Field(max_length=128)] | None = None
+    """Instead of curve: the design table, link B1 (at the ground pivot) outward."""
     target: Target | None = None
+    """With links: the curve the table is meant to draw, which trace measures the kit against."""
     offset_mm: Annotated[list[Finite], Field(min_length=2, max_length=2)] = [0.0, 0.0]
+    """With links: the curve's constant term C₀ [x, y] (the ground offset), added to the links' sum."""
     teeth: Literal["auto"] | Annotated[list[StageTeeth], Field(max_length=128)]
+    """auto: whole teeth meeting Eq 11 exactly and Eq 12–13 with gears.tip_gap_mm and gears.idler_reach_mm, the
+    smallest largest gear first; or per link j = 1 … n − 1 the teeth {D, M, G} of D_j, idler M_j and G_{j+1}."""
     gears: Gears
+    """The tooth system every gear shares, and the gears' play, width and hubs."""
     drive: Drive
+    """The drive gear and where it sits."""
     plates: Plates
+    """The link plates."""
     joints: Joints
+    """The axles and the fits of the joints."""
     base: Base = Base()
+    """The base, its legs and the crank."""
     pen: Pen = Pen()
+    """The pen and its holder on the last link."""
     checks: Checks = Checks()
+    """What partgen check holds the kit to."""
     tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that gears.backlash_per_gear_mm: auto chooses the play for."""
     belts: Belts | None = None
+    """Timing belts instead of idler gears (needs teeth: auto); none: idler gears."""
     material: Material
+    """The printing material: its name and density, for the masses."""
 
     @model_validator(mode="after")
     def _one_source(self):

@@ -13,38 +13,69 @@ __all__ = ["GearPairDesign"]
 
 class PairGears(Strict):
     module_mm: Length
+    """Gear module, both gears (reference pitch diameter / teeth)."""
     pressure_angle_deg: Annotated[float, Field(ge=10.0, le=35.0)] = 20.0
-    teeth: Annotated[list[Teeth], Field(min_length=2, max_length=2)]  # driver (input), driven (output)
+    """Pressure angle of the involute tooth system (the basic rack's flank angle); 20 is standard."""
+    teeth: Annotated[list[Teeth], Field(min_length=2, max_length=2)]
+    """Teeth of [driver (input), driven (output)]; the ratio is driven / driver."""
     face_width_mm: Length = 8.0
-    backlash_per_gear_mm: Gap | Literal["auto"] = 0.1  # auto: the least that meets tolerance.max_jam_probability  # circumferential thinning of each gear's tooth at its pitch circle
+    """Gear thickness along the axles."""
+    backlash_per_gear_mm: Gap | Literal["auto"] = 0.1
+    """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so the pair at its
+    zero-backlash centre distance has the sum of both as circumferential backlash; auto: the least that meets
+    tolerance.max_jam_probability on the printer."""
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1.0, le=1.0)] = "auto"
+    """Profile shift coefficient (× module) of both gears; auto: the smallest shift that avoids undercut (0 at and
+    above the undercut limit). The posts sit at the shifted pair's zero-backlash centre distance."""
     chord_tolerance_mm: Length = 0.01
+    """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
+    smaller is smoother and heavier STLs."""
 
 
 class Axles(Strict):
-    diameter_mm: Length = 8.0  # the posts standing on the base, each gear turning on one
-    clearance_diametral_mm: Gap | Literal["printer"] = 0.4  # bore over post; printer: the profile's running fit
-    axial_gap_mm: Gap = 0.5  # between the base and a gear's face
+    diameter_mm: Length = 8.0
+    """Diameter of the two posts standing on the base, each gear turning on one."""
+    clearance_diametral_mm: Gap | Literal["printer"] = 0.4
+    """Diametral running clearance, a gear's bore minus its post; printer: the printer profile's measured running fit
+    (fits.running_clearance_diametral_mm)."""
+    axial_gap_mm: Gap = 0.5
+    """Gap between the base plate and a gear's face."""
 
 
 class PairBase(Strict):
     thickness_mm: Length = 4.0
-    margin_mm: Length = 5.0  # beyond each gear's tip circle
+    """Thickness of the base plate the posts stand on."""
+    margin_mm: Length = 5.0
+    """How far the base plate reaches beyond each gear's tip circle."""
 
 
 class PairChecks(Strict):
-    samples: Annotated[int, Field(ge=8, le=10_000)] = 180  # over one revolution of the output
+    samples: Annotated[int, Field(ge=8, le=10_000)] = 180
+    """Input angles checked, evenly over one revolution of the output (check and trace; --samples overrides it)."""
     plate_margin_mm: Gap = 5.0
+    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 class GearPairDesign(Strict):
     kind: Literal["gear_pair"]
+    """The mechanism this file designs: `gear_pair` selects these keys."""
     name: Name
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
     description: Text = ""
+    """Free text about the design for whoever reads the file (partgen does not use it)."""
     printer: Annotated[str, Field(min_length=1, max_length=500)]
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
     gears: PairGears
+    """The two spur gears: tooth system, teeth, face width and play."""
     axles: Axles = Axles()
+    """The posts the gears turn on and the fit of their bores."""
     base: PairBase = PairBase()
+    """The base plate the posts stand on."""
     checks: PairChecks = PairChecks()
+    """What partgen check holds the kit to."""
     tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that `backlash_per_gear_mm: auto` chooses the play for."""
     material: Material
+    """The printing material: its name and density, for the masses."""

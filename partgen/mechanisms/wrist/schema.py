@@ -13,8 +13,13 @@ __all__ = ["WristDesign"]
 
 class Tooth(Strict):
     shape: Literal["dome"] = "dome"
+    """Tooth form on gear 1: dome (a sphere cap, smooth in every direction and printable without overhang); gear 2's
+    sockets are cut by sweeping the domes."""
     radius_mm: Length
+    """Radius of the dome's sphere."""
     height_mm: Length
+    """How far a dome stands proud of gear 1's pitch surface (under 2 × radius_mm; its foot must be at least the
+    printer's thinnest wall across)."""
 
 
 MAX_SWEEP_POSES = 2048  # each pose unions every dome into the socket cut: more takes hours
@@ -22,7 +27,10 @@ MAX_SWEEP_POSES = 2048  # each pose unions every dome into the socket cut: more 
 
 class Sweep(Strict):
     theta_steps: Annotated[int, Field(ge=2, le=200)] = 8
+    """Poses of gear 1's tilt θ, from 0 to the largest the bend reaches, swept to cut gear 2's sockets."""
     psi_steps: Annotated[int, Field(ge=4, le=720)] = 24
+    """Bend directions ψ round the axis swept at each tilt (theta_steps × psi_steps ≤ 2048; the default 8 × 24 cuts
+    the sockets within 0.01 mm)."""
 
     @model_validator(mode="after")
     def _budget(self):
@@ -36,9 +44,13 @@ class CrossGear(Strict):
     """An ABENICS-style cross spherical gear (ring-involute teeth both ways) on a spherical pitch."""
 
     teeth: Annotated[int, Field(ge=8, le=400)]
+    """Teeth of the cross gear (a multiple of 4, so the section through both ring axes is the 2-D profile)."""
     module_mm: Length
+    """Module of the cross gear; module × teeth / 2 must equal the sphere's pitch radius (half centre_distance_mm)."""
     pressure_angle_deg: Annotated[float, Field(ge=10, le=35)] = 20.0
+    """Pressure angle of the cross gear's involute profile; 20 is standard."""
     backlash_per_gear_mm: Gap = 0.05
+    """Each tooth thinned by this arc length at the pitch circle (circumferential)."""
 
     @field_validator("teeth")
     @classmethod
@@ -52,25 +64,49 @@ class Wrist(Strict):
     """A spherical (nominal_ratio 1) or quasi-ellipsoidal wrist gear pair."""
 
     nominal_ratio: Annotated[float, Field(gt=0.2, lt=5)]
+    """Nominal transmission ratio I (gear 2's turning rate over gear 1's at the pole, dφ/dθ): 1 makes both pitch
+    surfaces spheres, any other value quasi-ellipsoids."""
     centre_distance_mm: Length
+    """Distance from gear 1's centre to gear 2's centre (the sum of the pitch radii at the pole)."""
     longitudinal_pitch_mm: Length
+    """Meridian arc between neighbouring rings of teeth on the pitch surface."""
     ring_teeth: Annotated[list[Annotated[int, Field(ge=1, le=200)]], Field(min_length=2, max_length=20)] = [1, 6, 12]
+    """Teeth on each ring, from the pole outward (1: a tooth on the pole)."""
     tooth: Tooth
-    # ``printer``: half the running fit (diametral) the printer profile's maker measured
+    """Gear 1's teeth."""
     clearance_radial_mm: Finite | Literal["printer"]
+    """Radial clearance: gear 1's domes are grown by this before they cut gear 2's sockets; printer: half the printer
+    profile's measured running fit (diametral)."""
     max_bend_deg: Annotated[float, Field(gt=0, lt=180)]
+    """Largest bend between the two gears' axes (θ + φ) the workspace reaches and check covers; at least 10."""
     sweep: Sweep = Sweep()
+    """How finely the workspace is swept when gear 2's sockets are cut."""
     shaft_diameter_mm: Length
-    press_fit_clearance_diametral_mm: Finite | Literal["printer"] = 0.05  # printer: the profile's press fit
+    """Diameter of the D-shaft each gear is pressed onto."""
+    press_fit_clearance_diametral_mm: Finite | Literal["printer"] = 0.05
+    """Diametral clearance of a gear's D-bore over its shaft (hole minus shaft; negative: interference); printer: the
+    printer profile's measured press fit."""
     base_height_mm: Length = 8.0
+    """How far each gear's flat bottom face (where the shaft enters) lies below the gear's centre."""
     chord_tolerance_mm: Annotated[float, Field(ge=1e-3, le=0.5)] = 0.02
+    """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
+    smaller is smoother and heavier STLs."""
     cross_gear: CrossGear | None = None
+    """Also build an ABENICS-style cross gear on the same sphere (needs nominal_ratio 1); none: not built."""
 
 
 class WristDesign(Strict):
     kind: Literal["wrist"]
+    """The mechanism this file designs: `wrist` selects these keys."""
     name: Name
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
     description: Text = ""
+    """Free text about the design for whoever reads the file (partgen does not use it)."""
     printer: Annotated[str, Field(min_length=1, max_length=500)]
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
     wrist: Wrist
+    """The wrist gear pair: pitch surfaces, rings of teeth, clearance, workspace and shafts."""
     material: Material
+    """The printing material: its name and density, for the masses."""
