@@ -49,13 +49,16 @@ def _prism_overlap(ga: PartGeometry, Ta: np.ndarray, gb: PartGeometry, Tb: np.nd
     return vol
 
 
+FIT_KINDS = ("running", "press", "thrust")  # the contacts (core.parts.Contact) that are fits
+
+
 def check_fits(kit: Kit, geo: dict[str, PartGeometry], thetas: np.ndarray, angles: int = 4) -> tuple[list[Finding], list[dict]]:
     tol = kit.params.checks.interference_tolerance
     picks = thetas[:: max(1, len(thetas) // angles)][:angles]
     poses = [kit.poses(float(t)) for t in picks]
     findings, rows = [], []
     for c in kit.contacts:
-        if c.kind in ("mesh", "belt"):
+        if c.kind not in FIT_KINDS:  # meshes and drives are other checks' (meshing, the mechanism's own)
             continue
         ga, gb = geo[c.a], geo[c.b]
         worst = (0.0, 0, None)

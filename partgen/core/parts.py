@@ -42,7 +42,8 @@ class Contact:
     """Two parts of a kit meant to touch, and how (``checks.fits`` measures each over the motion).
 
     kind: "running" (turns on it, radial gap = running clearance / 2), "press" (D-fit, gap = press
-    clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh). window: world
+    clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh), "belt" (a belt
+    drive between two pulleys: the mechanism checks it). window: world
     z-range where the fit is (the bore's length), None for thrust and mesh. radial_gap: the designed
     radial clearance, mm."""
 
