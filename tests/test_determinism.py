@@ -37,6 +37,10 @@ def test_quantise_makes_ulp_differences_ties_and_keeps_real_ones():
 
 
 def chain_choices(cfg: str, sets=(), printer=None) -> dict:
+    """The discrete choices a chain's design makes. Its backlash is given (not ``auto``, which builds
+    and checks the kit to choose: its choice is a bisection on whole jam counts of fixed draws, and
+    tests/test_autoplay.py holds it)."""
+    sets = (*sets, "gears.backlash_per_gear_mm=0.05")
     spec = pipeline.load(ROOT / "configs" / cfg, over=pipeline.overrides(sets, printer)).spec
     m = spec.mechanism
     return {"module": spec.params.system.module,
