@@ -76,3 +76,25 @@ def test_seated_credits_both_bores_and_play_buys_fewer_jams(pair):
     # less backlash (the mesh's margins moved by per_backlash), more jams: the margin can fail
     tighter = dataclasses.replace(worst, nominal=worst.nominal - 0.08 * np.array([m.per_backlash for m in worst.margins]))
     assert p(tighter) > p(worst)
+
+
+def test_each_model_says_what_it_credits(pair):
+    """The result line names what the model credits: the crossed pair both bores, the worst case
+    centred; a model that credits nothing (the wrist's, the Bennett's) prints no separate worst case."""
+    from partgen.cli.tolerance import text
+
+    spec, kit, result = pair
+    seated = MECHANISM.tolerance_model(spec, kit, result, 0.3)
+    worst = MECHANISM.tolerance_model(spec, kit, result, 0.3, seated=False)
+    assert "seated" in seated.credits and "centred" in worst.credits
+
+    def study(model, worst_model):
+        r = summarise(model, run_chunk(model, 0, 0, 100))
+        return {**r, "design": "x", "accuracy_source": "test", "seat": model.credits, "chunks": 1, "workers": 1,
+                "resumed_chunks": 0, "worst_case": {"seat": worst_model.credits, **r["overall"]},
+                "seconds": {"samples": 0.0, "nominal_check": 0.0, "cluster_wait": 0.0}}
+    lines = text(study(seated, worst)).splitlines()
+    assert seated.credits in lines[1] and lines[2].startswith(f"worst case, {worst.credits}")
+    nothing = dataclasses.replace(seated, credits="no gear runs in a bore")
+    lines = text(study(nothing, nothing)).splitlines()
+    assert "no gear runs in a bore" in lines[1] and not any(x.startswith("worst case") for x in lines)

@@ -93,4 +93,4 @@ def tolerance_model(kit: CrossedKit, result: Result, accuracy_mm: float, seated:
         other = ("pin2 diameter", "pin", "pin2") if pb == "pin2" else ("base outline", "outline", "base")
         b.add(Margin(f"{pa}–{pb}", "clearance", "gap", float(closest[f"{pa}-{pb}"]), pb),
               {teeth[pa]: -0.5, other: -0.5})
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "both gears seated by their mesh in their bores" if seated else "every gear centred on its post (no bore play credited)")
