@@ -199,7 +199,8 @@ def jam_finding(loaded: Loaded, kit: Kit, result: Result, limit: float | None = 
                              "target": target, "worst_case": sw["overall"]["probability"], "worst_units": top}
     severity = "fail" if limit is not None and p > limit else ("warn" if target is not None and p > target else "info")
     msg = (f"P(jam) {100 * p:.2f} % (95 % CI {100 * lo:.2f}–{100 * hi:.2f} %; linear study of {QUICK_SAMPLES:,} "
-           f"prints at ±{acc:g} mm, gears seated by their meshes; worst case, every gear centred: "
+           f"prints at ±{acc:g} mm, {model.credits or 'gears seated by their meshes'}; worst case, "
+           f"{worst.credits or 'every gear centred'}: "
            f"{100 * sw['overall']['probability']:.1f} %)"
            + (f"; above the design's target {100 * target:g} %" if target is not None and p > target else "")
            + (f"; above --max-jam-probability {limit:g}" if severity == "fail" else "")

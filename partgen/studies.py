@@ -216,8 +216,8 @@ def tolerance(target, samples: int, accuracy_mm: float | None = None, seed: int 
         if exact:
             exact_result = exact_study(client, loaded, kit, nominal, model, exact, seed, progress)
     summary = summarise(model, total)
-    summary["seat"] = "gears pushed apart in their bores by their meshes (docs/tolerance.md)"
-    summary["worst_case"] = {"seat": "every gear centred on its post: no bore play credited",
+    summary["seat"] = model.credits or "gears pushed apart in their bores by their meshes (docs/tolerance.md)"
+    summary["worst_case"] = {"seat": worst.credits or "every gear centred on its post: no bore play credited",
                              "model_digest": worst.digest(), **summarise(worst, worst_total)["overall"]}
     summary.update({"design": raw.design.name, "kind": loaded.mechanism.kind, "config": str(loaded.path),
                     "design_digest": header["design"], "model_digest": model.digest(), "seed": int(seed),

@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 import pytest
 
+from partgen import pipeline
 from partgen.mechanisms.gear_chain.resolve import load as chain_load
 from partgen.mechanisms.gear_chain.kit import belt_path_of, build_kit
 from partgen.mechanisms.gear_chain.checks import check_kit
@@ -26,7 +27,9 @@ GT2 = BeltProfile()
 def belt(kit_of):
     """(ChainSpec, kit) of the shipped belt design: the session's `partgen build` of it (``kit_of``)."""
     b = kit_of("butterfly_belt")
-    assert b.loaded.spec == chain_load(ROOT / "configs" / "butterfly_belt.yaml")
+    # the config as `build` loads it (its backlash: auto, resolved once per process)
+    assert b.loaded.spec == pipeline.load(ROOT / "configs" / "butterfly_belt.yaml").spec
+    assert b.loaded.auto is not None and b.loaded.auto["backlash_per_gear_mm"] > 0
     return b.loaded.spec, b.kit
 
 

@@ -50,8 +50,8 @@ def test_ring_spaces_are_involutes_on_the_printed_section(planetary):
     meas = measure_spur_gear(space, 72, 1.5, math.radians(20), centre=(0.0, 0.0))
     assert meas.teeth_found == 72
     assert meas.flank_deviation < 0.01  # the config's chord tolerance
-    # a space is a pitch less the ring's tooth: π m / 2 widened by the ring's thinning
-    assert meas.tooth_thickness == pytest.approx(math.pi * 1.5 / 2 + 0.1, abs=0.01)
+    # a space is a pitch less the ring's tooth: π m / 2 widened by the ring's thinning (the config's backlash)
+    assert meas.tooth_thickness == pytest.approx(math.pi * 1.5 / 2 + s.system.backlash_per_gear, abs=0.01)
 
 
 def test_check_passes_and_the_carrier_turns_at_the_ratio(planetary):
@@ -61,8 +61,10 @@ def test_check_passes_and_the_carrier_turns_at_the_ratio(planetary):
     assert result.figures["max_printed_overlap_mm2"] == 0.0
     tr = MECHANISM.trace(spec, kit, 12, None)
     assert tr.stats["ratio_measured"] == pytest.approx(5.0, rel=2e-4)
-    # carrier-frame chain sun → planet → ring: both meshes' backlash (0.2 mm each) carried to the ring's pitch circle
-    want = math.degrees((0.2 + 0.2) / (1.5 * 72 / 2)) * 60
+    # carrier-frame chain sun → planet → ring: both meshes' backlash (2 × the config's per gear each) carried to the
+    # ring's pitch circle
+    j = 2 * spec.system.backlash_per_gear
+    want = math.degrees((j + j) / (1.5 * 72 / 2)) * 60
     assert want * 0.98 < tr.stats["backlash_arcmin"]["min"] <= tr.stats["backlash_arcmin"]["max"] < want * 1.05
 
 

@@ -72,10 +72,10 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
     lines = [f"{r['design']}: {r['samples']:,} simulated prints at ±{r['accuracy_mm']:g} mm ({r['accuracy_source']}), "
              f"{r['features']} printed features, {r['margins']} margins",
              f"P(jam) = {_pct(o['probability'])}  (95 % CI {_pct(o['ci95'][0])} – {_pct(o['ci95'][1])}; "
-             f"{o['jams']:,} of {r['samples']:,}; gears seated by their meshes in their bores)"]
+             f"{o['jams']:,} of {r['samples']:,}; {r.get('seat') or 'gears seated by their meshes in their bores'})"]
     wc = r.get("worst_case")
-    if wc:
-        lines.append(f"worst case, every gear centred on its post (no bore play credited): P(jam) = "
+    if wc and wc.get("seat") != r.get("seat"):  # a model that credits no play: the worst case is the headline
+        lines.append(f"worst case, {wc.get('seat') or 'every gear centred on its post (no bore play credited)'}: P(jam) = "
                      f"{_pct(wc['probability'])}  (95 % CI {_pct(wc['ci95'][0])} – {_pct(wc['ci95'][1])})")
     ex = r.get("exact")
     if ex:
@@ -92,8 +92,8 @@ def text(r: dict, dest=None, limit: int = 12) -> str:
     if len(r["units"]) > limit:
         lines.append(f"  … {len(r['units']) - limit} more (--json lists all)")
     lines += ["", "what drives the jams (share of jams by feature kind): "
-              + ", ".join(f"{k['kind']} {100 * k['share']:.1f} %" for k in r["sensitivity"]["by_kind"] if k["share"] > 0)
-              or "no jams"]
+              + (", ".join(f"{k['kind']} {100 * k['share']:.1f} %" for k in r["sensitivity"]["by_kind"] if k["share"] > 0)
+                 or "no jams")]
     if r["sensitivity"]["by_feature"]:
         lines.append("features: " + ", ".join(f"{f['feature']} {100 * f['share']:.1f} %"
                                               for f in r["sensitivity"]["by_feature"][:6]))

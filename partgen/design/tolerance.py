@@ -158,6 +158,7 @@ class MarginModel:
     nominal: np.ndarray
     accuracy_mm: float
     source: str = ""
+    credits: str = ""  # what the model credits, for the reader ("gears seated by their meshes in their bores")
 
     def __post_init__(self):
         F, K = len(self.features), len(self.margins)
@@ -210,7 +211,7 @@ class ModelBuilder:
         self.margins.append(margin)
         self.cols.append(col)
 
-    def model(self, accuracy: float, source: str) -> MarginModel:
+    def model(self, accuracy: float, source: str, credits: str = "") -> MarginModel:
         feats = tuple(self.features.values())
         idx = {f.name: i for i, f in enumerate(feats)}
         coeff = np.zeros((len(feats), len(self.margins)))
@@ -219,7 +220,7 @@ class ModelBuilder:
                 coeff[idx[name], k] = c
         sigma = np.array([f.sigma if f.sigma is not None else sigma_of(f.kind, accuracy) for f in feats])
         nominal = np.array([m.nominal for m in self.margins], dtype=float)
-        return MarginModel(feats, tuple(self.margins), coeff, sigma, nominal, float(accuracy), source)
+        return MarginModel(feats, tuple(self.margins), coeff, sigma, nominal, float(accuracy), source, credits)
 
 
 @dataclass(frozen=True)
@@ -367,7 +368,7 @@ def with_means(model: MarginModel, mean: np.ndarray, why: str = "") -> MarginMod
     if not np.any(mean):
         return model
     return MarginModel(model.features, model.margins, model.coeff, model.sigma, model.nominal + mean @ model.coeff,
-                       model.accuracy_mm, model.source + (f"; {why}" if why else ""))
+                       model.accuracy_mm, model.source + (f"; {why}" if why else ""), model.credits)
 
 
 PLAY_STEP_MM = 0.005  # auto play is a whole number of these (quantised: the same kit on any machine)

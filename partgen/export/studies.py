@@ -61,8 +61,10 @@ def tolerance_section(result: dict) -> tuple[str, str]:
             f"(95 % Wilson interval {100 * lo:.2f}–{100 * hi:.2f} %). Seed {result.get('seed', 0)}.</p>")
     wc, ex = result.get("worst_case"), result.get("exact")
     if wc:  # docs/tolerance.md: the headline seats the gears where their meshes push them
-        head += (f"<p>Gears seated by their meshes in their bores (docs/tolerance.md). Worst case, every gear centred "
-                 f"on its post (no bore play credited): P(jam) = {100 * wc['probability']:.2f} % "
+        seat = result.get("seat") or "gears seated by their meshes in their bores"
+        head += (f"<p>{html.escape(seat[:1].upper() + seat[1:])} (docs/tolerance.md). Worst case, "
+                 f"{html.escape(wc.get('seat') or 'every gear centred on its post (no bore play credited)')}: "
+                 f"P(jam) = {100 * wc['probability']:.2f} % "
                  f"({100 * wc['ci95'][0]:.2f}–{100 * wc['ci95'][1]:.2f} %).</p>")
     if ex:
         head += (f"<p>Exact Monte Carlo, {ex['prints']:,} prints of the real geometry: P(jam) = "

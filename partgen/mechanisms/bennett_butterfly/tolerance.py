@@ -120,7 +120,7 @@ def tolerance_model(kit, result: Result, accuracy_mm: float, seated: bool = True
                 b.add(Margin(f"Bennett {n} loop", "joint", f"closure at {math.degrees(ang):.0f}°", total, "S"), terms)
     # balance as printed
     _balance(b, kit, W)
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "no gear runs in a bore: no play to credit, the worst case is the headline")
 
 
 def _balance(b: ModelBuilder, kit, W: np.ndarray) -> None:

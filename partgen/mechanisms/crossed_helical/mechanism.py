@@ -245,6 +245,14 @@ class CrossedHelical:
         res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
+    def tolerance_model(self, spec: CrossedSpec, kit: CrossedKit, result: Result, accuracy_mm: float,
+                        seated: bool = True):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel`` (``seated``: the
+        gears sit where their mesh pushes them in their bores; otherwise centred, the worst case)."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm, seated)
+
     def trace(self, spec: CrossedSpec, kit: CrossedKit, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:
         """The transmission error over one tooth pitch of gear 1 (where gear 2's driven flank sits

@@ -273,4 +273,4 @@ def tolerance_model(kit: Kit, result: Result, accuracy_mm: float, seated: bool =
                 for part, feat, M in ax:
                     _project(terms, feat, part, u @ M, sign)
         b.add(Margin(unit, "clearance", "gap", float(g["mm"]), _where(pb)), terms)
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "gears seated by their meshes in their bores" if seated else "every gear centred on its post (no bore play credited)")

@@ -59,4 +59,4 @@ def tolerance_model(kit: PairKit, result: Result, accuracy_mm: float, seated: bo
         tip, root = getattr(s, g).tip_radius, getattr(s, h).root_radius
         b.add(Margin("gear1/gear2", "mesh", f"tip-root {g}→{h}", a + credit - tip - root, "base"),
               {**da, **{k: -0.5 * v for k, v in teeth.items()}})
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "both gears seated by their mesh in their bores" if seated else "every gear centred on its post (no bore play credited)")

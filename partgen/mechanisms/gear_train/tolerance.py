@@ -214,7 +214,7 @@ def _train(kit: TrainKit, result: Result, accuracy_mm: float, seated: bool) -> M
                 return centre[k], _axis(f"shaft{k}")
         return None
     _gaps(b, kit, result, meshing, axis_of)
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "gears and shafts seated by their meshes in their bores" if seated else "every gear and shaft centred in its bores (no play credited)")
 
 
 # ----------------------------------------------------------------------------------------- planetary
@@ -317,7 +317,7 @@ def _planetary(kit: PlanetaryKit, result: Result, accuracy_mm: float, seated: bo
             return np.zeros(2), carrier_axis
         return None
     _gaps(b, kit, result, meshing, axis_of)
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "planets and sun get no play (their meshes push both ways); the carrier and shafts centred" if seated else "every gear and shaft centred in its bores (no play credited)")
 
 
 # ---------------------------------------------------------------------------------------------- rack
@@ -355,7 +355,7 @@ def _rack(kit: RackKit, result: Result, accuracy_mm: float, seated: bool) -> Mar
         b.add(Margin("pinion/rack", "mesh", f"tip-root {key.replace('->', '→')}", float(value) + credit,
                      "frame"), t)
     _gaps(b, kit, result, {frozenset(("pinion", "rack"))}, lambda name: None)
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "the pinion's shaft and the rack seated by their mesh" if seated else "the pinion's shaft and the rack centred (no play credited)")
 
 
 def tolerance_model(kit, result: Result, accuracy_mm: float, seated: bool = True) -> MarginModel:

@@ -60,4 +60,4 @@ def tolerance_model(kit, result: Result, accuracy_mm: float, seated: bool = True
                     terms[(f"gear2 socket {k} {name}", "position", "gear2")] = float(w[axis])
             what = "floor gap" if n == DIRECTIONS else f"side gap {round(360 * n / DIRECTIONS)}°"
             b.add(Margin(unit, "mesh", what, c, "gear2"), terms)
-    return b.model(accuracy_mm, kit.name)
+    return b.model(accuracy_mm, kit.name, "no gear runs in a bore: no play to credit, the worst case is the headline")
