@@ -14,7 +14,7 @@ from ..design.bevel import BevelTooth
 from .outline import circle, segments_for
 from .solid import cross_section, extrude
 
-__all__ = ["bevel_gear", "revolved"]
+__all__ = ["bevel_gear", "revolved", "hull_to_floor"]
 
 
 def revolved(profile: np.ndarray, radius: float, tol: float) -> m3d.Manifold:
@@ -48,3 +48,11 @@ def cone_height_span(tooth: BevelTooth) -> tuple[float, float]:
     """(a of the back face, a of the toe face): where the gear body starts and ends along its axis."""
     b = tooth.blank()
     return float(b[0, 1]), float(b[5, 1])
+
+
+def hull_to_floor(points: np.ndarray, floor: float = -0.01) -> m3d.Manifold:
+    """The convex hull of ``points`` (n, 3) and their feet on the plane z = ``floor``: a block and
+    everything under it down to there."""
+    feet = np.array(points, dtype=float)
+    feet[:, 2] = floor
+    return m3d.Manifold.hull_points(np.vstack([points, feet]))

@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-import manifold3d as m3d
 import numpy as np
 from shapely.geometry import box
 
@@ -26,7 +25,7 @@ from ...core.printer import PrinterLimits
 from ...core.transforms import pose, pose_z, rot_z
 from ...design.bevel import BevelPair, BevelTooth, bevel_pair
 from ...errors import ConfigError
-from ...geometry.bevel import bevel_gear
+from ...geometry.bevel import bevel_gear, hull_to_floor
 from ...geometry.outline import circle
 from ...geometry.printing import least_support_flip
 from ...geometry.solid import extrude, union
@@ -219,9 +218,7 @@ def build_bevel(s: BevelSpec, progress=None) -> BevelKit:
     corners = np.array([[x, y, a] for x in (-k, k) for y in (-k, k) for a in (far, near)])
     T = s.pin_frame
     world = corners @ T[:3, :3].T + T[:3, 3]
-    feet = world.copy()
-    feet[:, 2] = -0.01
-    block = m3d.Manifold.hull_points(np.vstack([world, feet]))
+    block = hull_to_floor(world)
     hole = extrude(circle(r2s + s.press / 2, ftol, hole=True), near - far + 20.0, far - 10.0).transform(T[:3, :])
     foot1 = float(s.gear1.blank()[2, 0]) + s.margin  # gear 1's heel tip circle, and the margin
     xs = [min(-foot1, float(world[:, 0].min()) - s.margin), max(foot1, float(world[:, 0].max()) + s.margin)]
