@@ -82,8 +82,9 @@ class BevelDesign(Strict):
     printer: Annotated[str, Field(min_length=1, max_length=500)]
     """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
     in the design's folder, relative to it (--printer overrides it)."""
-    shaft_angle_deg: Annotated[float, Field(ge=30.0, le=120.0)] = 90.0
-    """Angle between the two (intersecting) shafts; 90 for a right-angle (mitre, with equal teeth) pair."""
+    shaft_angle_deg: Annotated[float, Field(ge=30.0, le=90.0)] = 90.0
+    """Angle between the two (intersecting) shafts, 30 to 90; 90 for a right-angle (mitre, with equal teeth) pair
+    (above 90 gear 2's block would stand under gear 2: not made)."""
     gears: BevelGears
     """The two straight bevel gears: teeth, module, pressure angle, face width, play."""
     shafts: BevelShafts = BevelShafts()
