@@ -125,6 +125,7 @@ SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[lissajous]": "test_multi_turn_drawings.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_crossed_helical]": "test_crossed_helical.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_worm]": "test_worm.py",
+    "test_manifest_schema.py::test_manifest_holds_the_schema[bevel_mitre]": "test_bevel.py",
     "test_tolerance_wrist.py": "test_wrist.py",  # the wrist kits
     "test_tolerance_bennett.py": "test_bennett_cli.py",  # the shipped Bennett kit
 }

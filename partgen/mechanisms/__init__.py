@@ -21,6 +21,7 @@ KINDS = (
     "gear_pair",
     "gear_train",
     "crossed_helical",
+    "bevel",
 )
 
 REGISTRY: dict[str, Mechanism] = {kind: import_module(f"{__name__}.{kind}").MECHANISM for kind in KINDS}

@@ -1,0 +1,5 @@
+"""bevel (see mechanism.py)."""
+
+from .mechanism import MECHANISM
+
+__all__ = ["MECHANISM"]

@@ -1,0 +1,241 @@
+"""A straight bevel pair as parts: a base carrying gear 1's upright post and a block that holds gear
+2's pin along the other shaft, the two bevel gears and the pin; the resolver from the validated YAML
+(deg → rad, diametral clearances); poses over gear 1's turn θ (rad).
+
+World frame (``design.bevel``): the base's top at z = 0, gear 1 about z through the origin, the
+common apex at (0, 0, z_A); gear 2's axis u_2 = (−sin Σ, 0, cos Σ) through the apex, its body
+beyond it along −u_2 (+x at Σ = 90°). z_A is the lowest that keeps gear 2 (teeth and hub)
+``frame.axial_gap_mm`` above the base, its block's hole a block wall above it, and gear 1 on a
+hub at least a millimetre long that stands the axial gap above the base. The mesh's thrust pushes
+each gear away from the apex: gear 1 onto nothing but its post (its hub's end is the gap above the
+base, see the docs), gear 2 against its block.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from shapely.geometry import box
+
+from ...config.loader import LoadedDesign, printer_fit, printer_limits
+from ...core.parts import Bore, Part
+from ...core.printer import PrinterLimits
+from ...core.transforms import pose, pose_z, rot_z
+from ...design.bevel import BevelPair, BevelTooth, bevel_pair
+from ...errors import ConfigError
+from ...geometry.bevel import bevel_gear, hull_to_floor
+from ...geometry.outline import circle
+from ...geometry.printing import least_support_flip
+from ...geometry.solid import extrude, union
+
+__all__ = ["BevelSpec", "BevelKit", "resolve_bevel", "build_bevel"]
+
+
+@dataclass(frozen=True)
+class BevelSpec:
+    """A straight bevel pair ready to build (mm, rad, g/mm³)."""
+
+    name: str
+    pair: BevelPair
+    shaft_radius: tuple[float, float]  # gear 1's post, gear 2's pin
+    running: float  # diametral clearances: a gear's bore over its post or pin
+    press: float  # the pin in its block
+    gap: float
+    base_thickness: float
+    margin: float
+    hub_length: float
+    block_wall: float
+    block_thickness: float
+    z_apex: float
+    samples: int
+    plate_margin: float
+    density: float
+    material: str
+    printer: PrinterLimits
+    tol: float
+
+    @property
+    def gear1(self) -> BevelTooth:
+        return self.pair.gears[0]
+
+    @property
+    def gear2(self) -> BevelTooth:
+        return self.pair.gears[1]
+
+    @property
+    def apex(self) -> np.ndarray:
+        return np.array([0.0, 0.0, self.z_apex])
+
+    @property
+    def phase2(self) -> float:
+        """Gear 2's turn at θ = 0 (rad, about its local z) that puts a tooth space of it on gear 1's
+        tooth 0 on the pitch line (both local +x point at it): half a pitch."""
+        return math.pi / self.gear2.teeth
+
+    def angle2(self, theta) -> np.ndarray:
+        """Gear 2's nominal turn (rad, about its local z) when gear 1 has turned ``theta``."""
+        return self.phase2 + np.asarray(theta) * self.pair.speed2()
+
+    def hub_radius(self, i: int) -> float:
+        """Gear i's hub: its bore plus a block wall, inside its back face's root radius by a module."""
+        g = self.pair.gears[i]
+        return min(float(g.heel_root[0]) - g.module, self.shaft_radius[i] + self.running / 2 + self.block_wall)
+
+    def hub_end(self, i: int) -> float:
+        """Where gear i's hub ends along its local axis (a < its back face): gear 1's the gap above the
+        base, gear 2's ``hub_length`` behind its back face."""
+        if i == 0:
+            return self.gap - self.z_apex
+        return float(self.pair.gears[1].heel_root[1]) - self.hub_length
+
+    def pose2(self, angle: float) -> np.ndarray:
+        """(4, 4) world-from-local pose of gear 2 turned ``angle`` about its axis."""
+        return pose(self.pair.frame2() @ rot_z(angle), self.apex)
+
+    @property
+    def pin_frame(self) -> np.ndarray:
+        return pose(self.pair.frame2(), self.apex)
+
+    @property
+    def block_span(self) -> tuple[float, float]:
+        """(far, near) local a of gear 2's block along its axis: the axial gap behind the hub's end."""
+        near = self.hub_end(1) - self.gap
+        return near - self.block_thickness, near
+
+    @property
+    def block_reach(self) -> float:
+        """The block's half-width round the pin's axis."""
+        return self.shaft_radius[1] + self.press / 2 + self.block_wall
+
+    @property
+    def pin_span(self) -> tuple[float, float]:
+        """(start, end) local a of gear 2's pin: 1 mm proud of the block's far face to gear 2's toe face."""
+        return self.block_span[0] - 1.0, float(self.gear2.toe_root[1])
+
+
+def _profile(tooth: BevelTooth, hub_radius: float, hub_end: float) -> np.ndarray:
+    """(n, 2) (ρ, a) of the gear's outline as a solid of revolution (the blank and the hub)."""
+    b = tooth.blank()
+    return np.vstack([b, [[0.0, hub_end], [hub_radius, hub_end]]])
+
+
+def _lowest(profile: np.ndarray, axis: np.ndarray, apex_z: float) -> float:
+    """The lowest world z of the solid of revolution of ``profile`` about ``axis`` through the apex."""
+    uz = float(axis[2])
+    side = math.sqrt(max(1 - uz * uz, 0.0))
+    return apex_z + float((profile[:, 1] * uz - profile[:, 0] * side).min())
+
+
+def resolve_bevel(loaded: LoadedDesign) -> BevelSpec:
+    d, p = loaded.design, loaded.printer
+    g = d.gears
+    pair = bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), math.radians(d.shaft_angle_deg),
+                      g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
+    tol = g.chord_tolerance_mm
+    for i, tooth in enumerate(pair.gears):
+        try:
+            tooth.section(tol)
+        except ValueError as e:
+            raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1}'s teeth cannot be made: {e}") from None
+        if float(tooth.blank()[:, 1].max()) > -1.0:
+            raise ConfigError(loaded.path, "shaft_angle_deg", f"gear {i + 1}'s pitch cone is {math.degrees(tooth.pitch_angle):.1f}° "
+                              "(nearly a crown gear): its toe reaches the apex; a smaller shaft angle or ratio")
+    for i in pair.interference():
+        t = pair.gears[i]
+        raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1} ({t.teeth} teeth, {t.virtual_teeth:.1f} "
+                          f"virtual) would be undercut: its mate's tip reaches below its involute; more teeth")
+    if pair.contact_ratio() < 1.1:
+        raise ConfigError(loaded.path, "gears.teeth", f"a contact ratio of {pair.contact_ratio():.2f} (under 1.1): "
+                          "more teeth or a larger addendum")
+    running = printer_fit(loaded, d.shafts.running_clearance_diametral_mm, "running",
+                          "shafts.running_clearance_diametral_mm")
+    press = printer_fit(loaded, d.shafts.press_fit_clearance_diametral_mm, "press_fit",
+                        "shafts.press_fit_clearance_diametral_mm")
+    radii = tuple(x / 2 for x in d.shafts.diameter_mm)
+    wall = printer_limits(p).min_wall
+    for i, (tooth, r) in enumerate(zip(pair.gears, radii)):
+        toe = float(tooth.toe_root[0])  # the smallest root radius: the toe's
+        if r + running / 2 + wall >= toe:
+            raise ConfigError(loaded.path, f"shafts.diameter_mm[{i}]", f"a Ø{2 * r:g} mm shaft leaves gear {i + 1}'s "
+                              f"toe root (Ø{2 * toe:.2f} mm) less than the printer's {wall:g} mm wall round its bore: "
+                              "a thinner shaft, more teeth, a larger module or a narrower face")
+        if 2 * (r + running / 2) < p.min_hole_diameter_mm:
+            raise ConfigError(loaded.path, f"shafts.diameter_mm[{i}]", f"the bore (Ø{2 * r + running:.2f} mm) is below "
+                              f"the printer's smallest reliable hole ({p.min_hole_diameter_mm:g} mm)")
+    gap, f = d.frame.axial_gap_mm, d.frame
+    spec = BevelSpec(d.name, pair, radii, running, press, gap, f.base_thickness_mm, f.margin_mm, f.hub_length_mm,
+                     f.block_wall_mm, f.block_thickness_mm, 0.0, d.checks.samples, d.checks.plate_margin_mm,
+                     d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p), tol)
+    # the apex's height: gear 1's hub at least 1 mm long; gear 2 and its block's hole above the base
+    u2 = pair.axis2
+    prof2 = _profile(pair.gears[1], spec.hub_radius(1), spec.hub_end(1))
+    far, near = spec.block_span
+    hole_low = min(a * u2[2] for a in (far, near)) - spec.block_reach * math.sqrt(1 - u2[2] ** 2)
+    z_apex = max(gap + 1.0 - float(pair.gears[0].heel_root[1]), gap - _lowest(prof2, u2, 0.0),
+                 spec.block_wall - hole_low)
+    return replace(spec, z_apex=float(z_apex))
+
+
+@dataclass(frozen=True)
+class BevelKit:
+    """The base (post and pin block), gear 1, gear 2 and gear 2's pin; poses over gear 1's turn θ."""
+
+    spec: BevelSpec
+    parts: tuple[Part, ...]
+
+    name = property(lambda self: self.spec.name)
+    printer = property(lambda self: self.spec.printer)
+    density = property(lambda self: self.spec.density)
+    material = property(lambda self: self.spec.material)
+
+    def part(self, name: str) -> Part:
+        return next(p for p in self.parts if p.name == name)
+
+    def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
+        s = self.spec
+        return {"base": np.eye(4), "gear1": pose_z(0.0, 0.0, s.z_apex, float(theta)),
+                "gear2": s.pose2(float(s.angle2(theta))), "pin2": s.pin_frame}
+
+
+def build_bevel(s: BevelSpec, progress=None) -> BevelKit:
+    say = progress or (lambda name: None)
+    pair, tol = s.pair, s.tol
+    r1s, r2s = s.shaft_radius
+    ftol = max(tol, 0.005)
+    say("gear1")
+    g1 = bevel_gear(s.gear1, r1s + s.running / 2, s.hub_radius(0), s.hub_end(0), tol)
+    say("gear2")
+    g2 = bevel_gear(s.gear2, r2s + s.running / 2, s.hub_radius(1), s.hub_end(1), tol)
+    say("base")
+    # gear 1's post: from inside the base to gear 1's toe face
+    top1 = s.z_apex + float(s.gear1.toe_root[1])
+    post = extrude(circle(r1s, ftol), top1 + 0.01, -0.01)
+    # gear 2's block: a square prism round the pin's axis, and everything under it down into the base
+    far, near = s.block_span
+    k = s.block_reach
+    corners = np.array([[x, y, a] for x in (-k, k) for y in (-k, k) for a in (far, near)])
+    T = s.pin_frame
+    world = corners @ T[:3, :3].T + T[:3, 3]
+    block = hull_to_floor(world)
+    hole = extrude(circle(r2s + s.press / 2, ftol, hole=True), near - far + 20.0, far - 10.0).transform(T[:3, :])
+    foot1 = float(s.gear1.blank()[2, 0]) + s.margin  # gear 1's heel tip circle, and the margin
+    xs = [min(-foot1, float(world[:, 0].min()) - s.margin), max(foot1, float(world[:, 0].max()) + s.margin)]
+    ys = [min(-foot1, float(world[:, 1].min()) - s.margin), max(foot1, float(world[:, 1].max()) + s.margin)]
+    plate = extrude(box(xs[0], ys[0], xs[1], ys[1]), s.base_thickness, -s.base_thickness)
+    base = union([plate, post, block]) - hole
+    say("pin2")
+    a0, a1 = s.pin_span
+    pin = extrude(circle(r2s, ftol), a1 - a0, a0)
+    u = pair.axis2
+    entry = T[:3, :3] @ np.array([0.0, 0.0, far - 0.5]) + T[:3, 3]
+    back1 = s.hub_end(0)
+    parts = [Part("base", "base", base, bores=(Bore("block", tuple(float(v) for v in entry), tuple(float(v) for v in u),
+                                                    2 * r2s, s.block_thickness + 1.0),)),
+             Part("gear1", "gear", g1, bores=(Bore("post", (0.0, 0.0, back1), (0.0, 0.0, 1.0), 2 * r1s,
+                                                   float(s.gear1.toe_root[1]) - back1),)),
+             Part("gear2", "gear", g2, bores=(Bore("pin", (0.0, 0.0, s.hub_end(1)), (0.0, 0.0, 1.0), 2 * r2s,
+                                                   float(s.gear2.toe_root[1]) - s.hub_end(1)),)),
+             Part("pin2", "axle", pin)]
+    return BevelKit(s, tuple(replace(p, print_flip=least_support_flip(p.solid, s.printer.overhang_deg)) for p in parts))

@@ -1,0 +1,110 @@
+"""The design YAML of a straight bevel gear pair on intersecting shafts (``kind: bevel``). Every
+length in mm, every angle in degrees, clearances diametral."""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import Field, model_validator
+
+from ...config.schema import Gap, Length, Material, Name, Strict, Text
+
+__all__ = ["BevelDesign"]
+
+Teeth = Annotated[int, Field(ge=6, le=400)]
+Fit = Literal["printer"] | Annotated[float, Field(ge=-1, le=5)]
+
+
+class BevelGears(Strict):
+    teeth: Annotated[list[Teeth], Field(min_length=2, max_length=2)]
+    """Teeth of [driver (input, gear 1, upright on the base), driven (output, gear 2, on the pin)]; equal teeth at a
+    90° shaft angle make a mitre pair."""
+    module_mm: Length
+    """Module at the heel (the teeth's outer, large end): each heel pitch diameter is teeth × module."""
+    pressure_angle_deg: Annotated[float, Field(ge=14.5, le=30.0)] = 20.0
+    """Pressure angle of the heel's (virtual spur gear's) involute; 20 is standard."""
+    face_width_mm: Length
+    """Length of the teeth along the pitch cone, from the heel inwards; at most a third of the cone distance."""
+    backlash_per_gear_mm: Gap = 0.1
+    """Per gear: each tooth is thinned by this arc length at its heel pitch circle; check measures the backlash the
+    pair is left with."""
+    addendum_coeff: Annotated[float, Field(ge=0.5, le=1.5)] = 1.0
+    """Tooth height above the pitch cone at the heel, × the module."""
+    dedendum_coeff: Annotated[float, Field(ge=0.8, le=2.0)] = 1.25
+    """Tooth depth below the pitch cone at the heel, × the module."""
+    chord_tolerance_mm: Annotated[float, Field(ge=0.001, le=0.1)] = 0.01
+    """Largest chord sagitta (deviation of the faceted heel outline from the exact curve) on flanks, roots and tips;
+    smaller is smoother and heavier STLs."""
+
+
+class BevelShafts(Strict):
+    diameter_mm: Annotated[list[Length], Field(min_length=2, max_length=2)] = [8.0, 8.0]
+    """Diameters of [gear 1's post (upright on the base), gear 2's pin (pressed into its block)]."""
+    running_clearance_diametral_mm: Fit = "printer"
+    """Diametral running clearance, a gear's bore minus its post or pin; printer: the printer profile's measured
+    running fit."""
+    press_fit_clearance_diametral_mm: Fit = "printer"
+    """Diametral clearance of gear 2's pin in its block's hole (hole minus pin; negative: interference); printer:
+    the printer profile's measured press fit."""
+
+
+class BevelFrame(Strict):
+    base_thickness_mm: Length = 5.0
+    """Thickness of the base plate carrying gear 1's post and gear 2's block."""
+    margin_mm: Length = 4.0
+    """How far the base reaches beyond gear 1's heel and gear 2's block."""
+    axial_gap_mm: Length = 0.5
+    """Gap between a gear's hub and the base or the block (also gear 2's heel above the base)."""
+    hub_length_mm: Length = 4.0
+    """Length of gear 2's hub behind its back face, along its axis (gear 1's hub reaches down to the base)."""
+    block_wall_mm: Length = 4.0
+    """Material round gear 2's pin in its block, and the hubs' wall round their bores."""
+    block_thickness_mm: Length = 12.0
+    """Length of gear 2's block along gear 2's axis: how deep the pin is held."""
+
+
+class BevelChecks(Strict):
+    samples: Annotated[int, Field(ge=4, le=1000)] = 12
+    """Phases checked over one tooth pitch of gear 1, each an exact 3-D interference and backlash test (--samples
+    overrides it)."""
+    plate_margin_mm: Gap = 5.0
+    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
+
+
+class BevelDesign(Strict):
+    kind: Literal["bevel"]
+    """The mechanism this file designs: `bevel` selects these keys."""
+    name: Name
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
+    description: Text = ""
+    """Free text about the design for whoever reads the file (partgen does not use it)."""
+    printer: Annotated[str, Field(min_length=1, max_length=500)]
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
+    shaft_angle_deg: Annotated[float, Field(ge=30.0, le=90.0)] = 90.0
+    """Angle between the two (intersecting) shafts, 30 to 90; 90 for a right-angle (mitre, with equal teeth) pair
+    (above 90 gear 2's block would stand under gear 2: not made)."""
+    gears: BevelGears
+    """The two straight bevel gears: teeth, module, pressure angle, face width, play."""
+    shafts: BevelShafts = BevelShafts()
+    """Gear 1's post, gear 2's pin and their fits."""
+    frame: BevelFrame = BevelFrame()
+    """The base, the hubs and the block holding gear 2's pin."""
+    checks: BevelChecks = BevelChecks()
+    """What partgen check holds the kit to."""
+    material: Material
+    """The printing material: its name and density, for the masses."""
+
+    @model_validator(mode="after")
+    def _face(self):
+        import math
+
+        z1, z2 = self.gears.teeth
+        s = math.radians(self.shaft_angle_deg)
+        d1 = math.atan2(math.sin(s), z2 / z1 + math.cos(s))
+        R = self.gears.module_mm * z1 / (2 * math.sin(d1))
+        if self.gears.face_width_mm > R / 3 + 1e-9:
+            raise ValueError(f"[gears.face_width_mm] {self.gears.face_width_mm:g} mm is more than a third of the cone "
+                             f"distance ({R:.2f} mm): at most {R / 3:.2f} mm")
+        return self
