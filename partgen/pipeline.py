@@ -21,7 +21,7 @@ from .errors import ConfigError, DesignError, OptionError
 from .export.gltf import motion_of
 from .export.kit import atomic_dir, write_kit
 from .export.outputs import claim_output, is_partgen_kit, read_marker
-from .export.prints import plan_plates, plates_png, printed_groups, stale_finding, write_plate_files
+from .export.prints import plan_plates, plate_pngs, printed_groups, stale_finding, write_plate_files
 from .export.studies import saved_tolerance
 from .mechanisms import REGISTRY, autoplay, load_design
 
@@ -307,7 +307,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     with tempfile.TemporaryDirectory() as tmpdir:
         tr = mech.trace(spec, kit, None, Path(tmpdir), False)  # no 2-D animation: the 3-D view moves
         files = {name: (Path(tmpdir) / name).read_bytes() for name in tr.files}
-    plates = plates_png(kit, mech.plate_margin(spec), result)
+    plates = plate_pngs(kit, mech.plate_margin(spec), result)
     say("pictures")
     tol = saved_tolerance(kit_dir / "tolerance" if kit_dir else Path("out") / raw.design.name / "tolerance",
                           raw.digest())

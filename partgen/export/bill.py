@@ -20,7 +20,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
     html), and with ``steps`` (``export.assembly.steps_of``) ("Assembly", html): the steps in order
     with the pictures of their parts. ``groups``: the kit's printed parts grouped
     (``export.kit.group_parts``), if made already."""
-    from .render import render  # matplotlib: only when a report draws
+    from .render import render, render_cutaway  # matplotlib: only when a report draws
     groups = groups or group_parts([printed(p, kit.printer) for p in kit.parts if p.printed])
     colour = lambda role: colours.get(role, "#999")  # noqa: E731
     poses = kit.poses(0.0)
@@ -28,8 +28,12 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
     for g in groups:
         for it in g:
             T = poses[it.part.name] @ it.local_from_print
-            scene.append((g[0].mesh.vertices @ T[:3, :3].T + T[:3, 3], g[0].mesh.faces, colour(it.part.role)))
-    assembly_png = render(scene, (1100, 720), elev=35, azim=-70)
+            scene.append((g[0].mesh.vertices @ T[:3, :3].T + T[:3, 3], g[0].mesh.faces, colour(it.part.role),
+                          it.part.name))
+    assembly_png, see = render_cutaway([sc[:3] for sc in scene], (1100, 720), elev=35, azim=-70)
+    cut = sorted({scene[i][3] for i in see})
+    cut_note = (f" Cut-away: {', '.join(html.escape(n) for n in cut)} drawn see-through, as "
+                f"{'they hide' if len(cut) > 1 else 'it hides'} most of what lies behind.") if cut else ""
     rows, pictures, printed_as = [], {}, {}
     density = kit.density
     for g in groups:
@@ -47,7 +51,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
     out = [("Bill of parts",
             f'<figure>{R.img(assembly_png, "assembly")}<figcaption>The assembly at rest '
             f"({sum(len(g) for g in groups)} printed parts, {total:.0f} g printed solid of "
-            f"{html.escape(kit.material)}).</figcaption></figure>"
+            f"{html.escape(kit.material)}).{cut_note}</figcaption></figure>"
             '<div class="parts">' + R.table(["picture", "part", "role", "count", "size mm (as printed)", "volume cm³",
                                              "mass g (solid)", "centre of mass mm (STL frame)", "gear"], rows,
                                             left=3, raw={0}) + "</div>")]

@@ -438,14 +438,177 @@ def plate_3mf(plate: tuple[Placement, ...], meshes: dict[str, trimesh.Trimesh], 
 
 # --- picture -----------------------------------------------------------------------------------
 
+_LABEL_PT = (10.0, 6.0)  # largest and smallest label size, points: 6 pt is still legible at 100 dpi
+
+
+def _overlap(a, b, pad: float = 1.0) -> bool:
+    """Whether two display-space boxes (x0, y0, x1, y1) come closer than ``pad`` pixels."""
+    return a[0] < b[2] + pad and b[0] < a[2] + pad and a[1] < b[3] + pad and b[1] < a[3] + pad
+
+
+def _box(text, renderer) -> tuple[float, float, float, float]:
+    from matplotlib.text import Text
+
+    e = Text.get_window_extent(text, renderer)
+    return float(e.x0), float(e.y0), float(e.x1), float(e.y1)
+
+
+def _label_footprints(ax, shapes: list[tuple[str, np.ndarray]], pt_per_mm: float) -> None:
+    """Write every label (name, its placed footprint outline (n, 2) mm) so that no two labels' text
+    boxes overlap (measured with the figure's renderer): each tries, in order, its footprint's
+    centre and then points further inside it, at the size that fits across it and then smaller
+    down to 6 pt, level and then (for a footprint taller than wide) turned upright; keeping inside
+    its footprint first, then anywhere on the plate; and when no spot is free it goes beside the
+    plate's parts on the nearest free spot with a leader line to its footprint. Smaller footprints
+    choose first (a large one has room to move its label)."""
+    renderer = ax.figure.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    inside_ax = lambda b: (b[0] >= frame.x0 and b[2] <= frame.x1 and b[1] >= frame.y0  # noqa: E731
+                           and b[3] <= frame.y1)
+    to_px = ax.transData.transform
+    taken: list[tuple[float, float, float, float]] = []
+    order = sorted(range(len(shapes)), key=lambda k: (Polygon(shapes[k][1]).area, k))
+    for k in order:
+        label, xy = shapes[k]
+        poly = Polygon(xy)
+        c = np.asarray(poly.centroid.coords[0]) if poly.contains(poly.centroid) else \
+            np.asarray(poly.representative_point().coords[0])
+        lo, hi = xy.min(axis=0), xy.max(axis=0)
+        gx, gy = np.meshgrid(np.linspace(lo[0], hi[0], 9)[1:-1], np.linspace(lo[1], hi[1], 9)[1:-1])
+        grid = np.column_stack([gx.ravel(), gy.ravel()])
+        grid = grid[shapely.contains_xy(poly, grid[:, 0], grid[:, 1])]
+        grid = grid[np.argsort(np.hypot(*(grid - c).T), kind="stable")]
+        spots = np.vstack([c[None], grid])
+        px_poly = Polygon(to_px(xy))
+        fit = float(np.clip(np.ptp(xy[:, 0]) * pt_per_mm / (0.65 * len(label)), *_LABEL_PT[::-1]))
+        sizes = [fit] + [s for s in np.arange(fit - 1.0, _LABEL_PT[1] - 1e-9, -1.0)]
+        turns = (0, 90) if np.ptp(xy[:, 1]) > 1.3 * np.ptp(xy[:, 0]) else (0,)
+        t = ax.text(c[0], c[1], label, ha="center", va="center", fontsize=fit, clip_on=False)
+
+        def free(b) -> bool:
+            return inside_ax(b) and not any(_overlap(b, o) for o in taken)
+
+        placed = None
+        for within in (True, False):
+            for size in sizes:
+                for rot in turns:
+                    t.set_fontsize(size)
+                    t.set_rotation(rot)
+                    for s in spots:
+                        t.set_position(s)
+                        b = _box(t, renderer)
+                        if free(b) and (not within or px_poly.contains(box(*b))):
+                            placed = b
+                            break
+                    if placed:
+                        break
+                if placed:
+                    break
+            if placed:
+                break
+        if placed is None:  # beside it, on rings around its centre, with a leader line
+            t.set_fontsize(_LABEL_PT[1])
+            t.set_rotation(0)
+            span = float(max(np.ptp(xy, axis=0)))
+            xl, yl = ax.get_xlim(), ax.get_ylim()
+            for r in span * np.array([0.6, 0.9, 1.3, 1.8, 2.5, 3.5, 5.0, 7.0]):
+                for a in np.arange(16) * (math.pi / 8) + math.pi / 2:
+                    s = c + r * np.array([math.cos(a), math.sin(a)])
+                    if not (xl[0] <= s[0] <= xl[1] and yl[0] <= s[1] <= yl[1]):
+                        continue
+                    t.set_position(s)
+                    b = _box(t, renderer)
+                    if free(b):
+                        placed = b
+                        ax.plot([c[0], s[0]], [c[1], s[1]], color="0.25", lw=0.6)
+                        break
+                if placed:
+                    break
+        if placed is None:  # nowhere free on the plate: drop the label rather than cover another
+            t.remove()
+            continue
+        taken.append(placed)
+
+
+def _draw_plate(ax, lay: Layout, i: int, footprints: dict[str, Polygon], colour: dict) -> list:
+    """Plate ``i`` of ``lay`` on ``ax``: the plate, its footprints, its title. Returns the labels to
+    write, (copy name, placed footprint outline (n, 2) mm)."""
+    from matplotlib.patches import Polygon as MplPolygon, Rectangle
+
+    W, H = lay.size
+    ax.add_patch(Rectangle((0, 0), W, H, fill=False, lw=1.5, ec="black"))
+    plate = lay.plates[i] if i < len(lay.plates) else ()
+    area = 0.0
+    shapes = []
+    for p in plate:
+        xy = np.asarray(footprints[p.name].exterior.coords) @ rot2(p.angle).T + (p.x, p.y)
+        area += footprints[p.name].area
+        ax.add_patch(MplPolygon(xy, closed=True, fc=colour[p.name], ec="0.2", lw=0.6, alpha=0.85))
+        shapes.append((instance_name(p), xy[:-1]))
+    ax.set_xlim(-0.02 * W, 1.02 * W)
+    ax.set_ylim(-0.02 * H, 1.02 * H)
+    ax.set_aspect("equal")
+    ax.set_title(f"plate {i + 1}: {len(plate)} parts, {100 * area / (W * H):.0f} % covered", fontsize=9)
+    ax.tick_params(labelsize=7)
+    return shapes
+
+
+def _write_labels(ax, shapes: list) -> None:
+    """The labels of a laid-out plate's axes, sized by its scale on the page."""
+    ax.apply_aspect()
+    W = ax.get_xlim()[1] - ax.get_xlim()[0]
+    _label_footprints(ax, shapes, ax.get_window_extent().width * 72 / ax.figure.dpi / W)
+
+
+def _colours(lay: Layout) -> dict:
+    import matplotlib
+
+    names = sorted({p.name for plate in lay.plates for p in plate})
+    cmap = matplotlib.colormaps["tab20"]
+    return {nm: cmap(i % 20) for i, nm in enumerate(names)}
+
+
+PLATE_PX = 1100  # width of one plate's picture in the report, pixels (the page's column is 1168)
+
+
+def plate_figure(lay: Layout, i: int, footprints: dict[str, Polygon], title: str = "",
+                 width_px: int = PLATE_PX):
+    """A matplotlib Figure (Agg canvas, laid out) of plate ``i`` alone, ``width_px`` wide at 100 dpi,
+    labels placed as :func:`_label_footprints` says."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    W, H = lay.size
+    w_in = width_px / 100
+    fig = Figure(figsize=(w_in, w_in * 0.94 * H / W + 0.7), dpi=100)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes([0.05, 0.04, 0.94, 0.94 * (w_in * 0.94 * H / W) / (w_in * 0.94 * H / W + 0.7)])
+    if title:
+        fig.suptitle(title, fontsize=11, y=0.995)
+    _write_labels(ax, _draw_plate(ax, lay, i, footprints, _colours(lay)))
+    return fig
+
+
+def plate_pictures(lay: Layout, footprints: dict[str, Polygon], title: str = "",
+                   width_px: int = PLATE_PX) -> list[bytes]:
+    """One PNG per plate, each ``width_px`` wide (see :func:`plate_figure`)."""
+    import io
+
+    out = []
+    for i in range(len(lay.plates)):
+        fig = plate_figure(lay, i, footprints, title, width_px)
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png")
+        out.append(buf.getvalue())
+    return out
+
+
 def plate_picture(lay: Layout, footprints: dict[str, Polygon], path: str | Path,
                   title: str = "") -> Path:
     """A PNG with one panel per plate: the plate rectangle and every placed footprint, filled and
     labelled with its copy name. ``footprints`` maps part name -> footprint (local frame)."""
-    import matplotlib
-    from matplotlib.figure import Figure  # Agg canvas directly: no pyplot, no display
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.patches import Polygon as MplPolygon, Rectangle
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # Agg canvas directly: no pyplot, no display
+    from matplotlib.figure import Figure
 
     W, H = lay.size
     n = max(1, len(lay.plates))
@@ -454,35 +617,14 @@ def plate_picture(lay: Layout, footprints: dict[str, Polygon], path: str | Path,
     panel = 8.0
     fig = Figure(figsize=(panel * cols, panel * H / W * rows + 0.8), dpi=100)
     FigureCanvasAgg(fig)
-    names = sorted({p.name for plate in lay.plates for p in plate})
-    cmap = matplotlib.colormaps["tab20"]
-    colour = {nm: cmap(i % 20) for i, nm in enumerate(names)}
-    pt_per_mm = 0.85 * panel * 72 / max(W, H)
-    for i in range(n):
-        ax = fig.add_subplot(rows, cols, i + 1)
-        ax.add_patch(Rectangle((0, 0), W, H, fill=False, lw=1.5, ec="black"))
-        plate = lay.plates[i] if i < len(lay.plates) else ()
-        area = 0.0
-        for p in plate:
-            r = rot2(p.angle)
-            xy = np.asarray(footprints[p.name].exterior.coords) @ r.T + (p.x, p.y)
-            area += footprints[p.name].area
-            ax.add_patch(MplPolygon(xy, closed=True, fc=colour[p.name], ec="0.2", lw=0.6,
-                                    alpha=0.85))
-            c = xy[:-1].mean(axis=0)
-            label = instance_name(p)
-            width_pt = np.ptp(xy[:, 0]) * pt_per_mm  # fit the label across the footprint
-            ax.text(c[0], c[1], label, ha="center", va="center",
-                    fontsize=float(np.clip(width_pt / (0.65 * len(label)), 4.0, 10.0)))
-        ax.set_xlim(-0.02 * W, 1.02 * W)
-        ax.set_ylim(-0.02 * H, 1.02 * H)
-        ax.set_aspect("equal")
-        ax.set_title(f"plate {i + 1}: {len(plate)} parts, {100 * area / (W * H):.0f} % covered",
-                     fontsize=9)
-        ax.tick_params(labelsize=7)
+    axes = [fig.add_subplot(rows, cols, i + 1) for i in range(n)]
     if title:
         fig.suptitle(title, fontsize=11)
-    fig.tight_layout()
+    colour = _colours(lay)
+    shapes = [_draw_plate(ax, lay, i, footprints, colour) for i, ax in enumerate(axes)]
+    fig.tight_layout()  # laid out before the labels are placed: they are measured where they end up
+    for ax, sh in zip(axes, shapes):
+        _write_labels(ax, sh)
     path = Path(path)
     fig.savefig(path, format="png")
     return path

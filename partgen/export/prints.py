@@ -11,7 +11,8 @@ from ..core.findings import Finding, Result
 from ..core.protocol import Kit
 from .kit import PrintedPart, group_parts, printed
 
-__all__ = ["printed_groups", "stale_files", "stale_finding", "plan_plates", "plates_png", "write_plate_files"]
+__all__ = ["printed_groups", "stale_files", "stale_finding", "plan_plates", "plates_png", "plate_pngs",
+           "write_plate_files"]
 
 _GROUPS: dict = {}  # id(kit) -> (kit, its printed parts grouped): one kit at a time
 
@@ -95,6 +96,19 @@ def plates_png(kit: Kit, margin: float, result: Result) -> bytes | None:
     with tempfile.TemporaryDirectory() as tmp:
         picture(Path(tmp) / "plates.png")
         return (Path(tmp) / "plates.png").read_bytes()
+
+
+def plate_pngs(kit: Kit, margin: float, result: Result) -> list[bytes] | None:
+    """One picture per build plate, each at the width the report shows it (``plates.PLATE_PX``), as
+    PNG bytes (None if the parts do not fit; ``result`` then says so)."""
+    from .plates import footprint, plate_pictures
+
+    lay, meshes, _ = plan_plates(kit, margin, result)
+    if lay is None:
+        return None
+    env = kit.printer.envelope
+    return plate_pictures(lay, {n: footprint(m, margin) for n, m in meshes.items()},
+                          f"{kit.name} on the {kit.printer.name}: {env[0]:g} × {env[1]:g} mm")
 
 
 def write_plate_files(folder: Path, kit: Kit, lay, meshes: dict, picture) -> None:

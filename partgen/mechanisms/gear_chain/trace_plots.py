@@ -36,6 +36,42 @@ def _curves(mech: ChainDesign, n: int = 4000):
 def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "") -> None:
     """Target (full series), the design's chain and the chain as built, links drawn at a few
     crank angles, arrows for the pen's direction, and which way is up."""
+    fig = trace_fig(mech, stats, title)
+    fig.savefig(png, dpi=110)
+    if svg is not None:
+        fig.savefig(svg)
+    plt.close(fig)
+
+
+def _clear_of(texts: list, avoid: list, fig) -> None:
+    """Move each annotation of ``texts`` (its text, by its offset from the point it marks) to the
+    first of a ring of offsets where its text box overlaps none of ``avoid`` (artists: the legend,
+    the other notes) and stays on its axes (else on the figure), measured with the figure's renderer."""
+    from matplotlib.text import Text
+
+    r = fig.canvas.get_renderer()
+    page = fig.bbox
+    offsets = [(20, 20), (20, -30), (-20, 20), (-20, -30)] + \
+        [(d * np.cos(a), d * np.sin(a)) for d in (40, 70, 110, 160, 220) for a in np.radians(np.arange(0, 360, 30))]
+    for t in texts:
+        others = [a.get_window_extent(r) for a in avoid if a is not t] + \
+            [Text.get_window_extent(o, r) for o in texts if o is not t]
+        for frame in (t.axes.get_window_extent(r), page):  # on its axes if it can be
+            for dx, dy in offsets:
+                t.xyann = (dx, dy)
+                t.set_horizontalalignment("left" if dx >= 0 else "right")
+                b = Text.get_window_extent(t, r)
+                if (b.x0 >= frame.x0 and b.x1 <= frame.x1 and b.y0 >= frame.y0 and b.y1 <= frame.y1
+                        and not any(b.overlaps(o) for o in others)):
+                    break
+            else:
+                continue
+            break
+
+
+def trace_fig(mech: ChainDesign, stats: dict, title: str = ""):
+    """The figure of :func:`trace_figure` (pyplot; the caller closes it), its notes placed clear of
+    its legend."""
     theta, paths, built, pen = _curves(mech)
     dr = mech.drawing
     if dr is not None:
@@ -61,27 +97,28 @@ def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "")
     ax.quiver(pen.real[::step], pen.imag[::step], d.real, d.imag, angles="xy", scale_units="xy", scale=1,
               color="#e45756", width=0.003, alpha=0.9)
     ax.plot([mech.chain.offset.real], [mech.chain.offset.imag], "k^", ms=9, label="ground pivot")
+    notes = []
     if "max_deviation_mm" in stats and dr is not None:
         k = int(np.argmin(np.abs(dr.theta - stats["worst_theta_rad"])))
-        ax.annotate(f"largest deviation (same θ) {stats['max_deviation_mm']:.1f} mm", (dr.samples[k].real, dr.samples[k].imag),
-                    xytext=(20, 20), textcoords="offset points", arrowprops={"arrowstyle": "->"})
+        notes.append(ax.annotate(f"largest deviation (same θ) {stats['max_deviation_mm']:.1f} mm", (dr.samples[k].real, dr.samples[k].imag),
+                    xytext=(20, 20), textcoords="offset points", arrowprops={"arrowstyle": "->"}))
     elif "max_deviation_mm" in stats and "full" in paths:
         k = int(np.argmin(np.abs(theta - stats["worst_theta_rad"])))
-        ax.annotate(f"largest deviation {stats['max_deviation_mm']:.1f} mm", (paths["full"][k].real, paths["full"][k].imag),
-                    xytext=(20, 20), textcoords="offset points", arrowprops={"arrowstyle": "->"})
-    ax.annotate("up (+y)", xy=(0.04, 0.96), xytext=(0.04, 0.86), xycoords="axes fraction",
+        notes.append(ax.annotate(f"largest deviation {stats['max_deviation_mm']:.1f} mm",
+                                 (paths["full"][k].real, paths["full"][k].imag), xytext=(20, 20),
+                                 textcoords="offset points", arrowprops={"arrowstyle": "->"}))
+    up = ax.annotate("up (+y)", xy=(0.04, 0.96), xytext=(0.04, 0.86), xycoords="axes fraction",
                 arrowprops={"arrowstyle": "-|>", "lw": 2}, ha="center", fontsize=9)
     ax.set_aspect("equal")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     text = ", ".join(f"{k.split('_mm')[0].replace('_', ' ')} {v:.2f} mm" for k, v in stats.items() if k.endswith("_mm"))
     ax.set_title(title or f"{text}")
-    ax.legend(loc="lower right", fontsize=8)
+    legend = ax.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(png, dpi=110)
-    if svg is not None:
-        fig.savefig(svg)
-    plt.close(fig)
+    fig.set_dpi(110)  # measured as saved
+    _clear_of(notes, [legend, up], fig)
+    return fig
 
 
 def tradeoff_axes(ax, d) -> None:
