@@ -98,3 +98,27 @@ def test_trace_json_has_the_band_for_chain_and_belt():
     # the belt's stages are not modelled (free angle 0 after link 1); its joints' play still counts
     assert b["link_free_angle_arcmin"][1:] == [0.0] * (len(b["link_free_angle_arcmin"]) - 1)
     assert b["worst_case_max"] >= sum(b["joint_radial_play_mm"]) - 1e-9
+
+
+# --- gear trains: lost motion at the output -----------------------------------------------------------
+
+def test_train_lost_motion_moves_with_backlash_and_clearance():
+    from partgen.mechanisms.gear_train.play import lost_motion
+
+    base = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.1"))
+    lash = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.2"))
+    loose = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.1",
+                              "shafts.running_clearance_diametral_mm=0.5"))
+    assert lash["backlash"] > 1.5 * base["backlash"] and lash["bores"] == pytest.approx(base["bores"])
+    assert loose["bores"] > 1.5 * base["bores"] and loose["backlash"] == pytest.approx(base["backlash"])
+    assert loose["total"] > base["total"] and lash["total"] > base["total"]
+
+
+def test_train_backlash_matches_the_printed_outlines():
+    """The formula's backlash at the output agrees with the backlash trace measures by turning the
+    printed outlines (drive flank to coast flank), and trace --json carries it with the band."""
+    stats = pipeline.trace("configs/gear_train_reducer.yaml", 16, plots_dir=False).trace.stats
+    lm = stats["lost_motion_arcmin"]
+    assert lm["backlash"] == pytest.approx(stats["backlash_arcmin"]["mean"], rel=0.05)
+    band = lm["transmission_error_band_arcmin"]
+    assert band["width"] >= lm["total"] * 0.95 and band["low"] < 0 < band["high"]
