@@ -70,6 +70,15 @@ def drawing_deviation(mech) -> dict:
                           "rms_mm": _r6(r.rms_mm), "shortest_link_mm": _r6(r.shortest_mm)} for r in d.rows]}
 
 
+def pen_error_band(spec: ChainSpec, theta: np.ndarray):
+    """The pen's error band from the kit's backlash and running-fit play (``design.play``), on the
+    design's printer."""
+    from ...design.play import pen_band
+
+    p = spec.params
+    return pen_band(spec.mechanism, p.joints.running_clearance / 2, theta, p.printer.xy_accuracy)
+
+
 def crank_text(mech) -> str:
     """How often the crank turns per drawing and why ("" for the usual once)."""
     from ...design.trace import crank_turns
@@ -220,18 +229,20 @@ class GearChain:
             stats["pruned_vs_full"] = deviation(targets["pruned"], targets["full"], theta).to_dict()
         if mech.drawing is not None:
             stats.update(drawing_deviation(mech))
+        band = pen_error_band(spec, theta)
+        stats["pen_error_band_mm"] = band.to_dict()
         files = []
         if out is not None:
             from .trace_plots import trace_animation, trace_figure
 
-            head = {k: v for k, v in stats.items() if k.endswith("_mm")} or \
+            head = {k: v for k, v in stats.items() if k.endswith("_mm") and not isinstance(v, dict)} or \
                 {k: v for k, v in stats["vs_pruned"].items() if k.endswith("_mm")}
             if "worst_theta_rad" in stats:
                 head["worst_theta_rad"] = stats["worst_theta_rad"]
             trace_figure(mech, head, out / "trace.png", out / "trace.svg",
                          f"{spec.params.name}: the pen over "
                          + ("one crank turn (mm)" if crank_turns(mech) == 1 else
-                            f"one drawing, {crank_turns(mech)} crank turns (mm)"))
+                            f"one drawing, {crank_turns(mech)} crank turns (mm)"), band=band)
             files = ["trace.png", "trace.svg"]
             if animate:
                 trace_animation(mech, out / "trace.gif")
@@ -335,6 +346,10 @@ class GearChain:
             rows.append(("(pruned vs full)", stats["pruned_vs_full"]))
         for label, d in rows:
             lines.append(f"{label:<28}{d['max_deviation_mm']:>16.3f}{d['rms_mm']:>10.3f}{d['hausdorff_mm']:>14.3f}")
+        band = stats.get("pen_error_band_mm")
+        if band:
+            lines.append(f"play at the pen (backlash and fits taken up): worst case {band['worst_case_max']:.2f} mm, "
+                         f"95 % of prints within {band['p95_max']:.2f} mm ({band['prints']} prints)")
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)

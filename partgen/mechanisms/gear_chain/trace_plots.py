@@ -33,10 +33,26 @@ def _curves(mech: ChainDesign, n: int = 4000):
     return theta, paths, built, trace(built, theta)
 
 
-def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "") -> None:
+def band_axes(ax, pen: np.ndarray, theta: np.ndarray, band) -> None:
+    """The pen's error band (``design.play.PenBand``) beside the nominal path: its worst case and the
+    95 % of prints, each drawn as the band across the path (the nominal path ± the band's part along
+    its normal)."""
+    at = np.interp(theta % (2 * np.pi), band.theta, band.worst_normal, period=2 * np.pi)
+    p95 = np.interp(theta % (2 * np.pi), band.theta, band.p95_normal, period=2 * np.pi)
+    t = np.gradient(pen)
+    nrm = 1j * t / np.maximum(np.abs(t), 1e-12)
+    for w, colour, alpha, label in ((at, "#f58518", 0.25, f"worst case from play (≤ {band.worst.max():.2f} mm)"),
+                                    (p95, "#e45756", 0.35, f"95 % of prints (≤ {band.p95_max:.2f} mm)")):
+        hi, lo = pen + nrm * w, pen - nrm * w
+        ax.fill(np.concatenate([hi.real, lo.real[::-1]]), np.concatenate([hi.imag, lo.imag[::-1]]), color=colour,
+                alpha=alpha, lw=0, label=label)
+
+
+def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "", band=None) -> None:
     """Target (full series), the design's chain and the chain as built, links drawn at a few
-    crank angles, arrows for the pen's direction, and which way is up."""
-    fig = trace_fig(mech, stats, title)
+    crank angles, arrows for the pen's direction, which way is up, and (``band``) the pen's error
+    band from the kit's play beside the nominal path."""
+    fig = trace_fig(mech, stats, title, band)
     fig.savefig(png, dpi=110)
     if svg is not None:
         fig.savefig(svg)
@@ -69,7 +85,7 @@ def _clear_of(texts: list, avoid: list, fig) -> None:
             break
 
 
-def trace_fig(mech: ChainDesign, stats: dict, title: str = ""):
+def trace_fig(mech: ChainDesign, stats: dict, title: str = "", band=None):
     """The figure of :func:`trace_figure` (pyplot; the caller closes it), its notes placed clear of
     its legend."""
     theta, paths, built, pen = _curves(mech)
@@ -84,6 +100,8 @@ def trace_fig(mech: ChainDesign, stats: dict, title: str = ""):
     if "full" in paths:
         ax.plot(paths["full"].real, paths["full"].imag, color="#999", lw=3.5, alpha=0.6, label="target: full Fourier series")
     ax.plot(paths["pruned"].real, paths["pruned"].imag, color="#4c78a8", lw=1.8, label="target: the design's links (pruned)")
+    if band is not None:
+        band_axes(ax, pen, theta, band)
     ax.plot(pen.real, pen.imag, color="#e45756", lw=0.9, ls="--", label="traced by the kit as built (its teeth)")
     turns = abs(mech.chain.links[0].speed)  # crank turns per drawing (the drive pair is 1:1)
     for k, deg in enumerate(LINK_ANGLES_DEG):

@@ -181,6 +181,10 @@ class GearTrain:
                  "transmission_error_arcmin": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
                  "backlash_arcmin": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
                  "max_overlap_mm2": float(turned["overlap_mm2"].max())}
+        if not isinstance(spec, PlanetarySpec):
+            from .play import lost_motion
+
+            stats["lost_motion_arcmin"] = lost_motion(spec, te, (coast - nominal) * ARCMIN)
         files = []
         if out is not None:
             (out / "transmission.png").write_bytes(_figure(spec, thetas, te, lash))
@@ -274,6 +278,11 @@ class GearTrain:
                  f"{s['samples']} angles over one output turn",
                  f"  transmission error {s['transmission_error_arcmin']['peak_to_peak']:.2f} arcmin peak to peak at the "
                  f"output; backlash {s['backlash_arcmin']['min']:.1f}–{s['backlash_arcmin']['max']:.1f} arcmin"]
+        lm = s.get("lost_motion_arcmin")
+        if lm:
+            band = lm["transmission_error_band_arcmin"]
+            lines.append(f"  lost motion at the output {lm['total']:.1f} arcmin (backlash {lm['backlash']:.1f}, bores' play "
+                         f"{lm['bores']:.1f}); output within {band['low']:.1f}…{band['high']:.1f} arcmin of nominal")
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
