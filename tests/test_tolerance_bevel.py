@@ -1,7 +1,7 @@
-"""The straight bevel pair's tolerance model (kind bevel): its coefficients for gear 2 moved along its
-own axis (away from the apex and towards it) and along gear 1's, against the exact 3-D backlash the
-check measures with gear 2's solid moved so; the seat credits the bores and the axial stops; less
-backlash means more jams."""
+"""The straight bevel pair's tolerance model (kind bevel): its cone-geometry coefficients (gear 2 moved
+off and into gear 1 along the pitch cones' common normal: heel and toe margins) against the exact 3-D
+backlash the check measures with gear 2's solid moved so; the seat credits the bores and the axial
+stops; less backlash means more jams."""
 
 from __future__ import annotations
 
