@@ -218,6 +218,15 @@ class Bevel:
         res.figures["printability"] = {**on_bed, "bores": bores}
         return res
 
+    def tolerance_model(self, spec: BevelSpec, kit: BevelKit, result: Result, accuracy_mm: float,
+                        seated: bool = True):
+        """The margins of the nominal check ``result`` as a ``design.tolerance.MarginModel`` (``seated``: each
+        gear where its mesh pushes it, sideways in its bore and back to its axial stop; otherwise centred
+        where the check had it, the worst case)."""
+        from .tolerance import tolerance_model
+
+        return tolerance_model(kit, result, accuracy_mm, seated)
+
     def trace(self, spec: BevelSpec, kit: BevelKit, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:
         """The transmission error over one tooth pitch of gear 1 (where gear 2's driven flank sits
