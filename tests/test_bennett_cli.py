@@ -43,7 +43,7 @@ def test_fixed_is_the_shipped_design_with_the_searched_layout_pinned(kit_dir):
     assert ours.pop("printer") == "printer.yaml" and fixed["printer"] == "fortus450mc"  # the kit's own copy of it
     assert ours == {k: v for k, v in fixed.items() if k != "printer"}
     heavy = yaml.safe_load((ROOT / "tests" / "designs" / "bennett_heavy_link.yaml").read_text())
-    assert heavy["checks"].pop("mass_scale") == {5: 1.1} and heavy == fixed
+    assert heavy["checks"].pop("mass_scale") == {5: 1.15} and heavy == fixed
 
 
 def test_kit_folder(kit_dir):

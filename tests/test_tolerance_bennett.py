@@ -32,6 +32,7 @@ def group(r: dict, g: str) -> float:
 
 def test_margins_of_the_shipped_kit(shipped):
     spec, kit, hook = shipped
+    kit = replace(kit, params=replace(kit.params, tolerance=0.1))  # tighter than the shipped 0.3: some prints fail
     m = hook(spec, kit, Result(), 0.127)
     fits = [x for x in m.margins if x.what == "radial gap"]
     assert len(fits) == sum(len(kit.layout.members(j)) for j in bbf.JOINTS)
@@ -67,6 +68,7 @@ def test_balance_linearisation_against_the_exact_centre_of_mass(shipped):
 
 def test_more_play_and_tolerance_fewer_failures(shipped):
     spec, kit, hook = shipped
+    kit = replace(kit, params=replace(kit.params, tolerance=0.1))  # a balance that fails in some prints
     base = study(hook(spec, kit, Result(), 0.3))
     tight = replace(kit, params=replace(kit.params, pin_clearance=0.02))
     r = study(hook(spec, tight, Result(), 0.3))

@@ -102,4 +102,4 @@ def test_backlash_moves_the_mesh_margins(trains):
     only = lambda mm: replace(mm, margins=tuple(mm.margins[k] for k in mesh), coeff=mm.coeff[:, mesh],  # noqa: E731
                                  nominal=mm.nominal[mesh])
     p, p_shrunk = jam(only(m)), jam(only(shrunk))
-    assert 0.0 < p and p_shrunk > p + 0.1, (p, p_shrunk)
+    assert 0.0 < p and p_shrunk > 5 * p and p_shrunk > p + 0.03, (p, p_shrunk)  # 0.6 % -> 7 % with 0.3 mm fits
