@@ -209,6 +209,14 @@ class GearChain:
 
         return tolerance_model(kit, result, accuracy_mm, seated)
 
+    def tolerance_exact(self, spec: ChainSpec, kit: Kit, result: Result, model, seated: bool = True):
+        """(task function, shared data) of the exact Monte Carlo: ``fn(shared, seed, index)`` makes
+        print ``index`` (its meshes on the printed gear outlines, its fits and clearances by their
+        margins) and says whether it jams (``exact``)."""
+        from .exact import exact_print, exact_shared
+
+        return exact_print, exact_shared(kit, result, model, seated)
+
     def trace(self, spec: ChainSpec, kit: Kit | None, samples: int | None, out: Path | None,
               animate: bool = True) -> Trace:
         """The pen of the chain as built over one crank turn vs its targets; trace.png/.svg/.gif into ``out``."""
