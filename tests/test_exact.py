@@ -58,4 +58,4 @@ def test_the_cli_study_reports_exact_beside_linear():
     assert ex["prints"] == N and 0 <= ex["jams"] <= N and ex["agrees"] is True
     assert ex["ci95"] == list(wilson(ex["jams"], N))
     with pytest.raises(Exception, match="no exact Monte Carlo"):
-        studies.tolerance("configs/butterfly_liu2017.yaml", 100, workers=1, processes=False, write=False, exact=5)
+        studies.tolerance("configs/wrist_sphere.yaml", 100, workers=1, processes=False, write=False, exact=5)
