@@ -16,7 +16,7 @@ because their first-order coefficient is 0: drawn with the position σ), then:
   those of one tooth pitch of the first gear, taken from the nominal assembly (crank angle 0) and
   advanced conjugately. At ``ANGLES`` positions of the first gear over that pitch the second must
   have an angle within ± 0.45 of its pitch at which the outlines do not overlap (the gear pair's
-  golden-section search, ``gear_pair/exact.py``). Tip-to-root interference shows as overlap too.
+  golden-section search, ``checks.free_angle``). Tip-to-root interference shows as overlap too.
 * **Running fits and clearances, by the linear margins** (the same draws): a fit's radial gap is
   ``(hole − pin)/2`` + half the hole's deviation − half the pin's, a circle-in-circle gap that is
   exact, not linearised; the clearances between passing parts (and Eq 12's tip circles) are gaps
@@ -39,7 +39,7 @@ from shapely.geometry import Polygon, box
 
 from ...design.tolerance import sigma_of
 from ...geometry.gear import gear_outline
-from ..gear_pair.exact import _free
+from ...checks.free_angle import free_angle as _free
 from .tolerance import _Chain, _mesh_bodies, _mesh_terms, _pin_of, seat_factors
 
 __all__ = ["ANGLES", "exact_shared", "exact_print"]

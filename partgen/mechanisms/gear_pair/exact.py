@@ -26,11 +26,11 @@ import shapely
 from shapely import affinity
 from shapely.geometry import box
 
+from ...checks.free_angle import free_angle as _free
+
 __all__ = ["ANGLES", "exact_shared", "exact_print"]
 
 ANGLES = 12  # positions of gear 1 over one tooth pitch
-TOL_RAD = 1e-6
-FREE_MM2 = 1e-9
 
 
 def exact_shared(kit, result, model, seated: bool = True, angles: int = ANGLES) -> dict:
@@ -43,28 +43,6 @@ def exact_shared(kit, result, model, seated: bool = True, angles: int = ANGLES) 
             "phase2": float(s.phase2), "gap": float(result.figures["radial_gap_mm"]),
             "features": [f.name for f in model.features], "sigma": model.sigma.tolist(),
             "pos_sigma": model.accuracy_mm / 3 / math.sqrt(2), "seated": bool(seated), "angles": int(angles)}
-
-
-def _free(g1, p2, a: float, phi: float, reach: float) -> bool:
-    def area(d: float) -> float:
-        g2 = affinity.translate(affinity.rotate(p2, phi + d, origin=(0, 0), use_radians=True), a)
-        return g1.intersection(g2).area if g1.intersects(g2) else 0.0
-    lo, hi = -reach, reach
-    g = (math.sqrt(5) - 1) / 2
-    x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-    f1, f2 = area(x1), area(x2)
-    while hi - lo > TOL_RAD:
-        if f1 <= FREE_MM2 or f2 <= FREE_MM2:
-            return True
-        if f1 < f2:
-            hi, x2, f2 = x2, x1, f1
-            x1 = hi - g * (hi - lo)
-            f1 = area(x1)
-        else:
-            lo, x1, f1 = x1, x2, f2
-            x2 = lo + g * (hi - lo)
-            f2 = area(x2)
-    return min(f1, f2) <= FREE_MM2
 
 
 def exact_print(shared: dict, seed: int, index: int) -> dict:
