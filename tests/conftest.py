@@ -128,6 +128,15 @@ SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[bevel_mitre]": "test_bevel.py",
     "test_tolerance_wrist.py": "test_wrist.py",  # the wrist kits
     "test_tolerance_bennett.py": "test_bennett_cli.py",  # the shipped Bennett kit
+    # test_shipped_jam checks every shipped kit: each where the same kit is built already
+    "test_shipped_jam.py": "test_manifest_schema.py",
+    "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[bennett_butterfly]": "test_bennett_cli.py",
+    "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[wrist_sphere]": "test_wrist.py",
+    "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[wrist_quasi_ellipsoid]": "test_wrist.py",
+    "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[lissajous]": "test_multi_turn_drawings.py",
+    "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[gear_train_crossed_helical]":
+        "test_crossed_helical.py",
+    "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[gear_train_worm]": "test_worm.py",
 }
 # The groups that take longest go first, so the two workers end together.
 FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")

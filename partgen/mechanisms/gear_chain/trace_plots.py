@@ -130,7 +130,8 @@ def trace_fig(mech: ChainDesign, stats: dict, title: str = "", band=None):
     ax.set_aspect("equal")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
-    text = ", ".join(f"{k.split('_mm')[0].replace('_', ' ')} {v:.2f} mm" for k, v in stats.items() if k.endswith("_mm"))
+    text = ", ".join(f"{k.split('_mm')[0].replace('_', ' ')} {v:.2f} mm" for k, v in stats.items()
+                     if k.endswith("_mm") and isinstance(v, (int, float)))  # figures, not the error band's table
     ax.set_title(title or f"{text}")
     legend = ax.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
