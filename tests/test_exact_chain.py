@@ -1,7 +1,7 @@
 """The gear chain's exact Monte Carlo (`tolerance --exact N`) against its linear model on the default
 chain at ±0.2 mm, where it jams at its meshes (~24 % seated, ~54 % centred, linear).
 
-Cheap: 30 prints each way (~0.2 s a print), in-process, one built and checked kit."""
+Cheap: 20 prints each way (~0.2 s a print), in-process, one built and checked kit."""
 
 import numpy as np
 import pytest
@@ -12,7 +12,7 @@ from partgen.mechanisms.gear_chain.exact import ANGLES, _mesh_jams, exact_print,
 
 CONFIG = "configs/butterfly.yaml"
 ACC = 0.2
-N = 30
+N = 20
 
 
 @pytest.fixture(scope="module")
