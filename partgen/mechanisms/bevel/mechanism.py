@@ -19,17 +19,17 @@ from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
 from ...core.protocol import Motion, Trace
-from ...core.transforms import rot_z
 from ...errors import DesignError
 from ...export.report import figure_png
 from ...geometry.helical import sector_prism
+from ...checks.contact3d import VOLUME_EPS, overlaps_over_pitch
+from ...checks.contact3d import contact_angles as _contact_angles, measured_ratio as _measured_ratio
 from ...geometry.measure import intersection, min_gap, oversize
 from .kit import BevelKit, BevelSpec, build_bevel, resolve_bevel
 from .schema import BevelDesign
 
 __all__ = ["Bevel", "MECHANISM", "mesh_overlaps", "contact_angles", "measured_ratio"]
 
-VOLUME_EPS = 1e-9  # mm³: below this an intersection is the boolean's rounding, not material
 WEDGE_PITCHES = 2  # each gear is cut to ± this many of its pitches round the pitch line (contact ratio < 2)
 
 
@@ -46,24 +46,11 @@ def _near_mesh(kit: BevelKit, theta: float):
     return out
 
 
-def _turned(T: np.ndarray, delta: float) -> np.ndarray:
-    """Pose T turned by ``delta`` about its own local z."""
-    R = np.eye(4)
-    R[:3, :3] = rot_z(delta)
-    return T @ R
-
-
 def mesh_overlaps(kit: BevelKit, phases: int, nudge: float = 0.0, theta0: float = 0.0) -> np.ndarray:
     """Exact overlap volumes (mm³) of the two gears at ``phases`` turns of gear 1 spread over one
-    of its tooth pitches from ``theta0`` (the mesh repeats tooth by tooth); ``nudge``: gear 2 turned
-    that far (rad) from its nominal angle."""
-    s = kit.spec
-    out = np.empty(phases)
-    for k in range(phases):
-        t = theta0 + 2 * math.pi / s.gear1.teeth * k / phases
-        a, Ta, b, Tb = _near_mesh(kit, t)
-        out[k] = intersection(a, Ta, b, _turned(Tb, nudge))[0]
-    return out
+    of its tooth pitches from ``theta0``; ``nudge``: gear 2 turned that far (rad) from its nominal
+    angle (``checks.contact3d.overlaps_over_pitch``)."""
+    return overlaps_over_pitch(lambda t: _near_mesh(kit, t), kit.spec.gear1.teeth, phases, nudge, theta0)
 
 
 def designed_backlash(spec: BevelSpec) -> float:
@@ -71,43 +58,23 @@ def designed_backlash(spec: BevelSpec) -> float:
     return spec.gear1.backlash + spec.gear2.backlash
 
 
+def _reach_guess(kit: BevelKit) -> tuple[float, float]:
+    """Half a pitch of gear 2 (farther than any backlash) and the designed play at gear 2 (rad)."""
+    s = kit.spec
+    return math.pi / s.gear2.teeth, designed_backlash(s) / s.gear2.pitch_radius
+
+
 def contact_angles(kit: BevelKit, thetas, tol: float = 1e-7) -> dict[str, np.ndarray]:
     """At gear 1's turns ``thetas``: how far gear 2 turns from its nominal angle (rad, about its own
     axis) before it touches gear 1, forwards (``ahead`` > 0) and backwards (``behind`` < 0), and the
-    overlap (mm³) at the nominal angle. Bisection on the exact intersection volume to ``tol`` rad."""
-    s = kit.spec
-    reach = math.pi / s.gear2.teeth  # half a pitch: farther than any backlash
-    guess = designed_backlash(s) / s.gear2.pitch_radius  # rad at gear 2, all of the play one way
-    thetas = np.atleast_1d(np.asarray(thetas, dtype=float))
-    out = {"ahead": np.empty(len(thetas)), "behind": np.empty(len(thetas)), "overlap_mm3": np.empty(len(thetas))}
-    for k, t in enumerate(thetas):
-        a, Ta, b, Tb = _near_mesh(kit, float(t))
-
-        def vol(d: float) -> float:
-            return intersection(a, Ta, b, _turned(Tb, d))[0]
-
-        out["overlap_mm3"][k] = vol(0.0)
-        for key, sign in (("ahead", 1.0), ("behind", -1.0)):
-            lo, hi = 0.0, min(reach, 4 * guess) if guess > 0 else reach  # bracket: 4× the designed play first
-            if vol(sign * hi) <= VOLUME_EPS:
-                lo, hi = hi, reach
-                if vol(sign * hi) <= VOLUME_EPS:
-                    lo = hi  # no contact within half a pitch: a gap that wide is reported as it
-            while hi - lo > tol:
-                mid = (lo + hi) / 2
-                lo, hi = (lo, mid) if vol(sign * mid) > VOLUME_EPS else (mid, hi)
-            out[key][k] = sign * lo
-    return out
+    overlap (mm³) at the nominal angle (``checks.contact3d.contact_angles``)."""
+    return _contact_angles(lambda t: _near_mesh(kit, t), thetas, *_reach_guess(kit), tol)
 
 
 def measured_ratio(kit: BevelKit, turns: int = 1, tol: float = 1e-8) -> tuple[float, float, float]:
-    """(ratio input/output measured, the driven flank's lag at θ = 0 and at θ = 2π·turns, rad): gear 2's
-    loaded angle (nominal + ``ahead``) found at both ends of ``turns`` turns of gear 1."""
-    s = kit.spec
-    ends = [0.0, 2 * math.pi * turns]
-    c = contact_angles(kit, ends, tol)["ahead"]
-    loaded = [float(s.angle2(t)) + d for t, d in zip(ends, c)]
-    return abs((ends[1] - ends[0]) / (loaded[1] - loaded[0])), float(c[0]), float(c[1])
+    """(ratio input/output measured, the driven flank's lag at θ = 0 and at θ = 2π·turns, rad)
+    (``checks.contact3d.measured_ratio``)."""
+    return _measured_ratio(lambda t: _near_mesh(kit, t), kit.spec.angle2, *_reach_guess(kit), turns, tol)
 
 
 class Bevel:
