@@ -13,7 +13,7 @@ from .findings import Result
 from .parts import Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "ParamsKit", "Mechanism", "OptionalHooks", "OPTIONAL_HOOKS", "Motion", "Trace", "Section", "Step",
+__all__ = ["Kit", "ParamsKit", "SpecKit", "Mechanism", "OptionalHooks", "OPTIONAL_HOOKS", "Motion", "Trace", "Section", "Step",
            "TOLERANCE_HOOK", "tolerance_hook"]
 
 
@@ -60,6 +60,14 @@ class ParamsKit:
     @property
     def material(self) -> str:
         return self.params.material
+
+
+class SpecKit(ParamsKit):
+    """``ParamsKit`` for a kit dataclass that keeps its parameters as ``spec``."""
+
+    @property
+    def params(self):
+        return self.spec
 
 
 @dataclass(frozen=True)

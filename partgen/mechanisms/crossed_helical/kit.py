@@ -19,6 +19,7 @@ from shapely.geometry import box
 from ...config.loader import LoadedDesign, printer_fit, printer_limits
 from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
+from ...core.protocol import SpecKit
 from ...core.transforms import pose, pose_z, rot_z
 from ...design.crossed_helical import CrossedPair, ThreadSpec, crossed_pair
 from ...design.gearing import GearSpec, ToothSystem
@@ -191,19 +192,12 @@ def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
 
 
 @dataclass(frozen=True)
-class CrossedKit:
+class CrossedKit(SpecKit):
     """The base (post and pin blocks), gear 1, gear 2 and gear 2's pin; poses over gear 1's turn θ."""
 
     spec: CrossedSpec
     parts: tuple[Part, ...]
 
-    name = property(lambda self: self.spec.name)
-    printer = property(lambda self: self.spec.printer)
-    density = property(lambda self: self.spec.density)
-    material = property(lambda self: self.spec.material)
-
-    def part(self, name: str) -> Part:
-        return next(p for p in self.parts if p.name == name)
 
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.spec

@@ -12,6 +12,7 @@ from ...config.loader import LoadedDesign, printer_fit, printer_limits
 from ...config.schema import AUTO_PLAY_START_MM
 from ...core.parts import Bore, Part
 from ...core.printer import PrinterLimits
+from ...core.protocol import SpecKit
 from ...core.transforms import pose_z
 from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
 from ...design.rules import ToothSystemError, check_generable
@@ -89,16 +90,12 @@ def resolve_pair(loaded: LoadedDesign) -> PairSpec:
 
 
 @dataclass(frozen=True)
-class PairKit:
+class PairKit(SpecKit):
     """The base with its two posts and the two gears; poses over gear 1's turn θ (rad)."""
 
     spec: PairSpec
     parts: tuple[Part, ...]
 
-    name = property(lambda self: self.spec.name)
-    printer = property(lambda self: self.spec.printer)
-    density = property(lambda self: self.spec.density)
-    material = property(lambda self: self.spec.material)
 
     def poses(self, theta: float = 0.0) -> dict[str, np.ndarray]:
         s = self.spec
