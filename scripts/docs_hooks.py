@@ -61,22 +61,9 @@ def _type(ann, ns: str = "") -> str:
 
 def _models(model) -> list:
     """The model and every model its fields hold, each once, in reading order."""
-    from pydantic import BaseModel
+    from partgen.config.schema import nested_models
 
-    out, todo = [], [model]
-    while todo:
-        m = todo.pop(0)
-        if m in out:
-            continue
-        out.append(m)
-        for f in m.model_fields.values():
-            stack = [f.annotation]
-            while stack:
-                a = stack.pop()
-                if isinstance(a, type) and issubclass(a, BaseModel):
-                    todo.append(a)
-                stack += list(typing.get_args(a))
-    return out
+    return nested_models(model)
 
 
 def _default(f) -> str:

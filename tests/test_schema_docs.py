@@ -10,27 +10,10 @@ import pytest
 from pydantic import BaseModel
 
 from partgen.config.schema import Printer
+from partgen.config.schema import nested_models as models
 from partgen.mechanisms import REGISTRY
 
 SCHEMAS = {**{kind: mech.schema for kind, mech in REGISTRY.items()}, "printer": Printer}
-
-
-def models(model: type[BaseModel]) -> list[type[BaseModel]]:
-    """``model`` and every model its fields hold (in lists, mappings, unions), each once."""
-    out, todo = [], [model]
-    while todo:
-        m = todo.pop(0)
-        if m in out:
-            continue
-        out.append(m)
-        for f in m.model_fields.values():
-            stack = [f.annotation]
-            while stack:
-                a = stack.pop()
-                if isinstance(a, type) and issubclass(a, BaseModel):
-                    todo.append(a)
-                stack += list(typing.get_args(a))
-    return out
 
 
 def undescribed(model: type[BaseModel]) -> list[str]:

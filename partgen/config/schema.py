@@ -8,11 +8,12 @@ reference is generated from them.
 
 from __future__ import annotations
 
+import typing
 from typing import Annotated
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
-__all__ = ["Strict", "Printer", "Material", "ToleranceTarget", "AUTO_PLAY_START_MM"]
+__all__ = ["Strict", "Printer", "Material", "ToleranceTarget", "AUTO_PLAY_START_MM", "nested_models"]
 
 MAX = 10_000.0  # the largest magnitude any number may have (10 m as a length): larger is a typo, not a design
 Pos = Annotated[float, Field(gt=0, le=MAX)]
@@ -165,3 +166,22 @@ class ToleranceTarget(Strict):
     max_jam_probability: Annotated[float, Field(gt=0, le=1)] = 0.01
     """Largest acceptable probability (0–1) that a print on the design's printer jams: `backlash_per_gear_mm: auto`
     chooses the least play meeting it, and check warns above it."""
+
+
+def nested_models(model: type[BaseModel]) -> list[type[BaseModel]]:
+    """``model`` and every model its fields hold (in lists, mappings, unions), each once, in reading
+    order (the config reference's tables, the test that every field is described)."""
+    out, todo = [], [model]
+    while todo:
+        m = todo.pop(0)
+        if m in out:
+            continue
+        out.append(m)
+        for f in m.model_fields.values():
+            stack = [f.annotation]
+            while stack:
+                a = stack.pop()
+                if isinstance(a, type) and issubclass(a, BaseModel):
+                    todo.append(a)
+                stack += list(typing.get_args(a))
+    return out
