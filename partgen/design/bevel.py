@@ -33,12 +33,9 @@ from fractions import Fraction
 
 import numpy as np
 
-__all__ = ["BevelPair", "BevelTooth", "bevel_pair", "inv"]
+from . import involute
 
-
-def inv(a):
-    """The involute function tan a − a."""
-    return np.tan(a) - a
+__all__ = ["BevelPair", "BevelTooth", "bevel_pair"]
 
 
 @dataclass(frozen=True)
@@ -89,7 +86,7 @@ class BevelTooth:
         tooth's centre line (the lower: −); below the virtual base circle the flank is radial."""
         rv, rb = self.virtual_radius, self.virtual_base_radius
         a = self.pressure_angle
-        psi = self.tooth_thickness / (2 * rv) + float(inv(a))
+        psi = self.tooth_thickness / (2 * rv) + involute.inv(a)
         rho = np.maximum(np.asarray(rho, dtype=float), rb)
         t = np.sqrt(np.maximum(rho * rho - rb * rb, 0.0)) / rb
         return psi - (t - np.arctan(t))
@@ -157,12 +154,7 @@ class BevelTooth:
         ua, ur = self.addendum, -self.dedendum
         tooth = np.vstack([arc(ur, -half, -psi_r)[:-1], lower, arc(ua, -psi_a, psi_a)[1:-1], upper[::-1],
                            arc(ur, psi_r, half)[1:-1]])
-        rot = 2 * math.pi * np.arange(z) / z
-        pts = np.concatenate([np.column_stack([np.cos(t) * tooth[:, 0] - np.sin(t) * tooth[:, 1],
-                                               np.sin(t) * tooth[:, 0] + np.cos(t) * tooth[:, 1]]) for t in rot])
-        keep = np.ones(len(pts), dtype=bool)
-        keep[1:] = np.hypot(*np.diff(pts, axis=0).T) > 1e-9
-        return pts[keep]
+        return involute.repeat_tooth(tooth, z)
 
     def blank(self, margin: float = 0.5) -> np.ndarray:
         """(6, 2) (ρ, a) counter-clockwise, a along the axis (apex at 0, the body at a < 0): the ring

@@ -33,6 +33,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from . import involute
+
 from .gear_train import Transverse, transverse_system, twist_over
 
 __all__ = ["CrossedPair", "crossed_pair", "efficiency", "friction_angle", "ThreadSpec"]
@@ -203,9 +205,4 @@ class ThreadSpec:
         # counter-clockwise: root arc, lower flank root → tip, tip arc, upper flank tip → root, root arc
         tooth = np.vstack([arc(rr, -math.pi / z, -psi_r)[:-1], upper * np.array([1.0, -1.0]),
                            arc(ra, -psi_a, psi_a)[1:-1], upper[::-1], arc(rr, psi_r, math.pi / z)[1:-1]])
-        rot = 2 * math.pi * np.arange(z) / z
-        pts = np.concatenate([np.column_stack([np.cos(t) * tooth[:, 0] - np.sin(t) * tooth[:, 1],
-                                               np.sin(t) * tooth[:, 0] + np.cos(t) * tooth[:, 1]]) for t in rot])
-        keep = np.ones(len(pts), dtype=bool)
-        keep[1:] = np.hypot(*np.diff(pts, axis=0).T) > 1e-9
-        return pts[keep]
+        return involute.repeat_tooth(tooth, z)

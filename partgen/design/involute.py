@@ -38,6 +38,7 @@ __all__ = [
     "undercut_limit",
     "min_profile_shift",
     "auto_profile_shift",
+    "repeat_tooth",
     "is_undercut",
     "working_pressure_angle",
     "inv_inverse",
@@ -196,6 +197,22 @@ def auto_profile_shift(z, alpha, ha=1.0) -> float:
 def is_undercut(z, alpha, x=0.0, ha=1.0) -> bool:
     """True when generation undercuts the flank: ``x < min_profile_shift(z, alpha, ha)`` (1e-12 slack)."""
     return bool(_finite(x, "x") < min_profile_shift(z, alpha, ha) - 1e-12)
+
+
+def repeat_tooth(tooth: np.ndarray, z: int) -> np.ndarray:
+    """A whole gear's outline from one tooth: ``tooth`` (n, 2) mm, counter-clockwise from -π/z to
+    π/z, turned to each of the ``z`` teeth; points closer than ``_DUP`` to the one before (and a last
+    point on the first) merged. Returns (m, 2) mm."""
+    rot = 2.0 * math.pi * np.arange(z) / z
+    cr, sr = np.cos(rot)[:, None], np.sin(rot)[:, None]
+    pts = np.stack([cr * tooth[:, 0] - sr * tooth[:, 1], sr * tooth[:, 0] + cr * tooth[:, 1]], axis=-1)
+    pts = pts.reshape(-1, 2)
+    keep = np.ones(len(pts), dtype=bool)
+    keep[1:] = np.hypot(*np.diff(pts, axis=0).T) >= _DUP
+    pts = pts[keep]
+    if np.hypot(*(pts[-1] - pts[0])) < _DUP:
+        pts = pts[:-1]
+    return pts
 
 
 # ----------------------------------------------------------------------------- pair relations
@@ -523,16 +540,7 @@ def gear_outline(z, m, alpha, x=0.0, thinning=0.0, ha=1.0, hf=1.25, rho=0.38, to
     tip = np.stack([ra * np.cos(ang), ra * np.sin(ang)], axis=-1)
     tooth = np.concatenate([lower, tip, upper])
 
-    rot = 2.0 * math.pi * np.arange(z) / z
-    cr, sr = np.cos(rot)[:, None], np.sin(rot)[:, None]
-    pts = np.stack([cr * tooth[:, 0] - sr * tooth[:, 1], sr * tooth[:, 0] + cr * tooth[:, 1]], axis=-1)
-    pts = pts.reshape(-1, 2)
-    keep = np.ones(len(pts), dtype=bool)
-    keep[1:] = np.hypot(*np.diff(pts, axis=0).T) >= _DUP
-    pts = pts[keep]
-    if np.hypot(*(pts[-1] - pts[0])) < _DUP:
-        pts = pts[:-1]
-    pts = np.ascontiguousarray(pts)
+    pts = np.ascontiguousarray(repeat_tooth(tooth, z))
     pts.setflags(write=False)
     return GearOutline(
         points=pts, undercut=bool(undercut), form_radius=float(form), z=z, m=m, alpha=alpha, x=x,
