@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...checks.footer import check_footer
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
@@ -253,14 +254,7 @@ class Bevel:
                  f"gear 2's heel pitch circle (designed {b['designed']:.3f} mm); transmission error "
                  f"{1000 * te['peak_to_peak']:.1f} µm peak to peak",
                  "  closest: " + ", ".join(f"{k} {v:.2f} mm" for k, v in f["closest_mm"].items())]
-        if "printability" in f:
-            from ...checks.bed import bed_summary
-
-            lines.append("  " + bed_summary(f["printability"]))
-        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
-                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
-        return "\n".join(lines)
+        return "\n".join(lines + check_footer(result, seconds, folder))
 
     def trace_text(self, spec: BevelSpec, trace: Trace, folder) -> str:
         s = trace.stats

@@ -11,6 +11,7 @@ import shapely
 from shapely import affinity
 from shapely.geometry import box
 
+from ...checks.footer import check_footer
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
@@ -213,14 +214,7 @@ class GearPair:
                  f"  backlash {b['min']:.3f}–{b['max']:.3f} mm (designed {b['designed']:.3f} mm); transmission error "
                  f"{1000 * te['peak_to_peak']:.1f} µm peak to peak; largest overlap {f['max_overlap_mm2']:.4f} mm²; "
                  f"bore over post {f['radial_gap_mm']:.3f} mm radial"]
-        if "printability" in f:
-            from ...checks.bed import bed_summary
-
-            lines.append("  " + bed_summary(f["printability"]))
-        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
-                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
-        return "\n".join(lines)
+        return "\n".join(lines + check_footer(result, seconds, folder))
 
     def trace_text(self, spec: PairSpec, trace: Trace, folder) -> str:
         s = trace.stats

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...checks.footer import check_footer
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
@@ -244,10 +245,7 @@ class GearTrain:
                      f"  pinion/rack {r['teeth'][0]}/{r['teeth'][1]}: contact ratio {r['contact_ratio']:.3f}, backlash "
                      f"{r['backlash_mm']['min']:.3f}–{r['backlash_mm']['max']:.3f} mm (designed "
                      f"{r['backlash_mm']['designed']:.3f}), rack tips {r['rack_tip_width_mm']:.2f} mm"]
-            lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-            lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
-                         + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
-            return "\n".join(lines)
+            return "\n".join(lines + check_footer(result, seconds, folder))
         lines = [f"{spec.name}: {f['samples']} angles over one turn of the slowest shaft ({f['input_turns']:g} input turns)"]
         for row in f.get("meshes", []):
             lines.append(f"  {'/'.join(row['pair'])} {row['teeth'][0]}/{row['teeth'][1]}: centre distance "
@@ -261,10 +259,7 @@ class GearTrain:
         b = f.get("output_backlash_arcmin", {})
         if b:
             lines.append(f"  backlash at the output {b['min']:.1f}–{b['max']:.1f} arcmin (printed outlines)")
-        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
-                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
-        return "\n".join(lines)
+        return "\n".join(lines + check_footer(result, seconds, folder))
 
     def trace_text(self, spec: TrainSpec, trace: Trace, folder) -> str:
         s = trace.stats

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ...checks.footer import check_footer
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Result
@@ -158,14 +159,7 @@ class Wrist:
                  f"{f['min_engaged_mm3']:.2f} mm³",
                  f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
         lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
-        if "printability" in f:
-            from ...checks.bed import bed_summary
-
-            lines.append("  " + bed_summary(f["printability"]))
-        lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
-        lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
-                     + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
-        return "\n".join(lines)
+        return "\n".join(lines + check_footer(result, seconds, folder))
 
     def trace_text(self, spec: WristSpec, trace: Trace, folder) -> str:
         stats = trace.stats

@@ -1,0 +1,20 @@
+"""The end of every mechanism's `check` text, written once: the bed and bores line (when the check
+measured printability), one line per failure, and the verdict with the time and where the plates went."""
+
+from __future__ import annotations
+
+from ..core.findings import Result
+from .bed import bed_summary
+
+__all__ = ["check_footer"]
+
+
+def check_footer(result: Result, seconds: float, folder) -> list[str]:
+    """Lines closing a check's text: ``  <bed summary>`` (if ``result.figures`` holds printability),
+    ``  FAIL  check: message`` per failure, then ``OK|FAILED in N s[; K build plate(s) in folder/]``."""
+    f = result.figures
+    lines = ["  " + bed_summary(f["printability"])] if "printability" in f else []
+    lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+    lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s"
+                 + (f"; {f.get('plates', '?')} build plate(s) in {folder}/" if folder else ""))
+    return lines
