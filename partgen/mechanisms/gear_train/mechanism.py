@@ -245,7 +245,7 @@ class GearTrain:
                      f"  pinion/rack {r['teeth'][0]}/{r['teeth'][1]}: contact ratio {r['contact_ratio']:.3f}, backlash "
                      f"{r['backlash_mm']['min']:.3f}–{r['backlash_mm']['max']:.3f} mm (designed "
                      f"{r['backlash_mm']['designed']:.3f}), rack tips {r['rack_tip_width_mm']:.2f} mm"]
-            return "\n".join(lines + check_footer(result, seconds, folder))
+            return "\n".join(lines + check_footer(result, seconds, folder, bed=False))
         lines = [f"{spec.name}: {f['samples']} angles over one turn of the slowest shaft ({f['input_turns']:g} input turns)"]
         for row in f.get("meshes", []):
             lines.append(f"  {'/'.join(row['pair'])} {row['teeth'][0]}/{row['teeth'][1]}: centre distance "
@@ -259,7 +259,7 @@ class GearTrain:
         b = f.get("output_backlash_arcmin", {})
         if b:
             lines.append(f"  backlash at the output {b['min']:.1f}–{b['max']:.1f} arcmin (printed outlines)")
-        return "\n".join(lines + check_footer(result, seconds, folder))
+        return "\n".join(lines + check_footer(result, seconds, folder, bed=False))
 
     def trace_text(self, spec: TrainSpec, trace: Trace, folder) -> str:
         s = trace.stats
