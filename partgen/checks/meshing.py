@@ -87,14 +87,14 @@ def check_meshes(kit: Kit, thetas: np.ndarray, label: str = "motion parameter") 
         if p.gear is not None and p.gear not in outlines:
             outlines[p.gear] = Polygon(gear_outline(p.gear).points)
     findings, rows = [], []
-    poses = [kit.poses(float(t)) for t in thetas]
+    P = kit.poses_over(np.asarray(thetas, dtype=float))  # name -> (N, 4, 4)
     for c in kit.contacts:
         if c.kind != "mesh":
             continue
         pair = _Pair(kit, c.a, c.b, outlines)
         ga, gb = pair.ga, pair.gb
         s = ga.system
-        P0a, P0b = poses[0][c.a], poses[0][c.b]
+        P0a, P0b = P[c.a][0], P[c.b][0]
         a_op = float(np.linalg.norm(P0b[:2, 3] - P0a[:2, 3]))
         a_design = centre_distance(ga, gb)
         names = (c.a, c.b)
@@ -109,8 +109,8 @@ def check_meshes(kit: Kit, thetas: np.ndarray, label: str = "motion parameter") 
         # tooth overlap over the motion, one evaluation per distinct mesh phase
         seen, worst = set(), (0.0, None, None)
         pa_pitch, pb_pitch = 2 * math.pi / ga.teeth, 2 * math.pi / gb.teeth
-        for n, pz in enumerate(poses):
-            Ta, Tb = pz[c.a], pz[c.b]
+        for n in range(len(thetas)):
+            Ta, Tb = P[c.a][n], P[c.b][n]
             rel = np.linalg.inv(Ta) @ Tb
             line = math.atan2(rel[1, 3], rel[0, 3])
             key = (round((line % pa_pitch) / pa_pitch * 512) % 512,

@@ -55,11 +55,8 @@ def sample_angles(n: int) -> np.ndarray:
 
 def pose_array(kit: Kit, names: list[str], thetas: np.ndarray) -> np.ndarray:
     """(N, P, 4, 4) poses of the named parts at each value of the motion parameter."""
-    out = np.empty((len(thetas), len(names), 4, 4))
-    for i, t in enumerate(thetas):
-        poses = kit.poses(float(t))
-        out[i] = [poses[n] for n in names]
-    return out
+    poses = kit.poses_over(np.asarray(thetas, dtype=float))
+    return np.stack([poses[n] for n in names], axis=1) if names else np.empty((len(thetas), 0, 4, 4))
 
 
 def declared_pairs(kit: Kit) -> set[frozenset]:

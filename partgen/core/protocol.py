@@ -36,6 +36,11 @@ class Kit(Protocol):
         """name -> (4, 4) world-from-local pose of every part at motion parameter ``t``."""
         ...
 
+    def poses_over(self, ts) -> dict[str, np.ndarray]:
+        """name -> (N, 4, 4) poses of every part at the N values ``ts`` of the motion parameter
+        (``ParamsKit`` gives it from ``poses``; a kit may compute it at once)."""
+        ...
+
 
 class ParamsKit:
     """The Kit protocol's name, printer, density and material, read from the kit's ``params``
@@ -44,6 +49,11 @@ class ParamsKit:
 
     def part(self, name: str) -> Part:
         return next(p for p in self.parts if p.name == name)
+
+    def poses_over(self, ts) -> dict[str, np.ndarray]:
+        """name -> (N, 4, 4): ``poses`` at each of the N values ``ts``."""
+        each = [self.poses(float(t)) for t in np.atleast_1d(np.asarray(ts, dtype=float))]
+        return {name: np.stack([p[name] for p in each]) for name in (each[0] if each else {})}
 
     @property
     def name(self) -> str:

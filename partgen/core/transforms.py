@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-__all__ = ["rot2", "rot_z", "rot_x", "rot_axis", "pose", "pose_z", "turn_about", "frame_z", "apply"]
+__all__ = ["rot2", "rot_z", "rot_x", "rot_axis", "pose", "pose_z", "poses_z", "turn_about", "frame_z", "apply"]
 
 
 def _cs(angle: float) -> tuple[float, float]:
@@ -66,6 +66,23 @@ def pose_z(x: float = 0.0, y: float = 0.0, z: float = 0.0, angle: float = 0.0) -
     """(4, 4): turned by ``angle`` about z, then moved to (x, y, z)."""
     c, s = _cs(angle)
     return np.array([[c, -s, 0.0, x], [s, c, 0.0, y], [0.0, 0.0, 1.0, z], [0.0, 0.0, 0.0, 1.0]])
+
+
+def poses_z(x, y, z, angle) -> np.ndarray:
+    """(N, 4, 4): ``pose_z`` for arrays of N values (each argument an (N,) array or a number),
+    exact at quarter turns as ``pose_z`` is."""
+    t = np.atleast_1d(np.asarray(angle, dtype=float))
+    x, y, z = (np.asarray(v, dtype=float) for v in (x, y, z))
+    n = max(len(t), *(v.size for v in (x, y, z)))
+    c, s = np.cos(t), np.sin(t)
+    rc, rs = np.round(c) + 0.0, np.round(s) + 0.0  # + 0.0: no negative zero (as Python's round)
+    c = np.where(np.abs(c - rc) < 1e-12, rc, c)
+    s = np.where(np.abs(s - rs) < 1e-12, rs, s)
+    out = np.zeros((n, 4, 4))
+    out[:, 0, 0], out[:, 0, 1], out[:, 1, 0], out[:, 1, 1] = c, -s, s, c
+    out[:, 0, 3], out[:, 1, 3], out[:, 2, 3] = x, y, z
+    out[:, 2, 2] = out[:, 3, 3] = 1.0
+    return out
 
 
 def turn_about(T: np.ndarray, axis, through, angle: float) -> np.ndarray:

@@ -14,10 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.transforms import rot2
 from .mechanism import ChainDesign
 
-__all__ = ["GearPose", "link_angles", "joint_positions", "gear_poses", "mesh_pairs", "clockings", "mesh_phase_error"]
+__all__ = ["GearPose", "GearTrack", "gear_tracks", "link_angles_over", "joint_positions_over", "link_angles", "joint_positions", "gear_poses", "mesh_pairs", "clockings", "mesh_phase_error"]
 
 TAU = 2 * math.pi
 
@@ -32,51 +31,91 @@ class GearPose:
     angle: float
 
 
+@dataclass(frozen=True)
+class GearTrack:
+    """A gear's centres (N, 2) mm and the world angles of its tooth 0 (N,) rad at N crank angles."""
+
+    name: str
+    carrier: int
+    centre: np.ndarray
+    angle: np.ndarray
+
+
+def link_angles_over(mech: ChainDesign, thetas) -> np.ndarray:
+    """(N, n + 1) rad: ``link_angles`` at each of N crank angles."""
+    t = np.atleast_1d(np.asarray(thetas, dtype=float))[:, None]
+    speed = np.array([l.speed for l in mech.chain.links], dtype=float)
+    phase = np.array([l.phase for l in mech.chain.links], dtype=float)
+    return np.concatenate([np.zeros((len(t), 1)), speed * t + phase], axis=1)
+
+
+def joint_positions_over(mech: ChainDesign, thetas, angles: np.ndarray | None = None) -> np.ndarray:
+    """(N, n + 1, 2) mm: ``joint_positions`` at each of N crank angles (``angles``: their
+    ``link_angles_over``, if already known)."""
+    a = (link_angles_over(mech, thetas) if angles is None else angles)[:, 1:]
+    lengths = np.array([l.length for l in mech.chain.links], dtype=float)
+    p = np.concatenate([np.zeros((len(a), 1), dtype=complex), np.cumsum(lengths * np.exp(1j * a), axis=1)], axis=1)
+    return np.stack([p.real, p.imag], axis=-1)
+
+
 def link_angles(mech: ChainDesign, theta: float) -> np.ndarray:
     """(n + 1,) rad: α_0 = 0 for the base, then α_j for each link."""
-    return np.array([0.0] + [l.speed * theta + l.phase for l in mech.chain.links])
+    return link_angles_over(mech, [theta])[0]
 
 
 def joint_positions(mech: ChainDesign, theta: float) -> np.ndarray:
     """(n + 1, 2) mm: J_0 = the ground pivot at the origin, J_j = distal joint of link j (J_n = pen)."""
-    a = link_angles(mech, theta)[1:]
-    lengths = np.array([l.length for l in mech.chain.links])
-    steps = lengths * np.exp(1j * a)
-    p = np.concatenate([[0j], np.cumsum(steps)])
-    return np.column_stack([p.real, p.imag])
+    return joint_positions_over(mech, [theta])[0]
 
 
-def _turned(angle: float, v) -> tuple[float, float]:
-    """A link-frame vector (2,) mm in the world at the link angle ``angle`` rad."""
-    x, y = rot2(angle) @ np.asarray(v, dtype=float)
-    return (float(x), float(y))
+def _turned(angle: np.ndarray, v) -> np.ndarray:
+    """A link-frame vector (2,) mm in the world at the link angles ``angle`` (N,) rad: (N, 2)."""
+    c, s = np.cos(angle), np.sin(angle)
+    rc, rs = np.round(c) + 0.0, np.round(s) + 0.0  # exact at quarter turns, as core.transforms
+    c = np.where(np.abs(c - rc) < 1e-12, rc, c)
+    s = np.where(np.abs(s - rs) < 1e-12, rs, s)
+    vx, vy = float(v[0]), float(v[1])
+    return np.stack([c * vx - s * vy, s * vx + c * vy], axis=-1)
+
+
+def _raw_tracks(mech: ChainDesign, thetas) -> list[GearTrack]:
+    """Gear tracks without clocking (every gear's tooth 0 on its carrier's +x at θ = 0)."""
+    a = link_angles_over(mech, thetas)
+    J = joint_positions_over(mech, thetas, a)
+    n = len(a)
+    out = [
+        GearTrack("G1", 1, np.zeros((n, 2)), a[:, 1]),
+        GearTrack("drive", 0, np.broadcast_to(np.asarray(mech.drive_centre, dtype=float), (n, 2)),
+                  -(mech.G1.teeth / mech.drive.teeth) * a[:, 1]),
+    ]
+    for s in mech.stages:
+        j = s.j
+        rel_d = a[:, j - 1] - a[:, j]  # D_j relative to the carrier B_j
+        out += [
+            GearTrack(f"D{j}", j - 1, J[:, j - 1], a[:, j - 1]),
+            GearTrack(f"M{j}", j, J[:, j - 1] + _turned(a[:, j], s.idler), a[:, j] - (s.D.teeth / s.M.teeth) * rel_d),
+            GearTrack(f"G{j + 1}", j + 1, J[:, j], a[:, j + 1]),
+        ]
+    for s in mech.belt_stages:  # pulleys turn with what they are fixed to; the belt's tensioner with its link
+        j = s.j
+        out += [GearTrack(f"D{j}", j - 1, J[:, j - 1], a[:, j - 1]), GearTrack(f"G{j + 1}", j + 1, J[:, j], a[:, j + 1])]
+        if s.tensioner is not None:
+            out.append(GearTrack(f"T{j}", j, J[:, j - 1] + _turned(a[:, j], s.tensioner), a[:, j]))
+    return out
+
+
+def gear_tracks(mech: ChainDesign, thetas, clock: dict[str, float] | None = None) -> dict[str, GearTrack]:
+    """Every gear's track over the crank angles ``thetas`` (N,), clocked (``clock`` defaults to
+    ``clockings(mech)``)."""
+    clock = clockings(mech) if clock is None else clock
+    return {t.name: GearTrack(t.name, t.carrier, t.centre, t.angle + clock.get(t.name, 0.0))
+            for t in _raw_tracks(mech, thetas)}
 
 
 def _raw_poses(mech: ChainDesign, theta: float) -> list[GearPose]:
     """Gear poses without clocking (every gear's tooth 0 on its carrier's +x at θ = 0)."""
-    a = link_angles(mech, theta)
-    J = joint_positions(mech, theta)
-    out = [
-        GearPose("G1", 1, (0.0, 0.0), a[1]),
-        GearPose("drive", 0, mech.drive_centre, -(mech.G1.teeth / mech.drive.teeth) * a[1]),
-    ]
-    for s in mech.stages:
-        j = s.j
-        rel_d = a[j - 1] - a[j]  # D_j relative to the carrier B_j
-        idler = _turned(a[j], s.idler)
-        out += [
-            GearPose(f"D{j}", j - 1, tuple(J[j - 1]), a[j - 1]),
-            GearPose(f"M{j}", j, (J[j - 1][0] + idler[0], J[j - 1][1] + idler[1]),
-                     a[j] - (s.D.teeth / s.M.teeth) * rel_d),
-            GearPose(f"G{j + 1}", j + 1, tuple(J[j]), a[j + 1]),
-        ]
-    for s in mech.belt_stages:  # pulleys turn with what they are fixed to; the belt's tensioner with its link
-        j = s.j
-        out += [GearPose(f"D{j}", j - 1, tuple(J[j - 1]), a[j - 1]), GearPose(f"G{j + 1}", j + 1, tuple(J[j]), a[j + 1])]
-        if s.tensioner is not None:
-            t = _turned(a[j], s.tensioner)
-            out.append(GearPose(f"T{j}", j, (J[j - 1][0] + t[0], J[j - 1][1] + t[1]), a[j]))
-    return out
+    return [GearPose(t.name, t.carrier, (float(t.centre[0, 0]), float(t.centre[0, 1])), float(t.angle[0]))
+            for t in _raw_tracks(mech, [theta])]
 
 
 def mesh_pairs(mech: ChainDesign) -> list[tuple[str, str]]:

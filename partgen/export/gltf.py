@@ -165,11 +165,8 @@ def motion_of(mechanism, spec, kit: Kit) -> Motion:
 
 
 def _node_poses(kit: Kit, instances: list[Instance], us: np.ndarray) -> np.ndarray:
-    out = np.empty((len(us), len(instances), 4, 4))
-    for k, u in enumerate(us):
-        poses = kit.poses(float(u))
-        out[k] = [poses[it.part.name] @ it.local_from_mesh for it in instances]
-    return out
+    poses = kit.poses_over(np.asarray(us, dtype=float))
+    return np.stack([poses[it.part.name] @ it.local_from_mesh for it in instances], axis=1)
 
 
 def sample_motion(kit: Kit, instances: list[Instance], motion: Motion, max_error_mm: float = MAX_ERROR_MM,

@@ -18,8 +18,8 @@ import numpy as np
 
 from ...core.parts import Bore, Contact
 from ...core.protocol import ParamsKit
-from ...core.transforms import pose_z
-from ...design.kinematics import clockings, gear_poses, joint_positions, link_angles
+from ...core.transforms import pose_z, poses_z
+from ...design.kinematics import clockings, gear_tracks, joint_positions_over, link_angles_over
 from ...design.mechanism import PEN_BORE_CLEARANCE, ChainDesign
 from .params import KitParams
 from ...errors import DesignError
@@ -82,29 +82,32 @@ class Kit(ParamsKit):
         if theta not in self._posed:
             if len(self._posed) > 4096:
                 self._posed.clear()
-            self._posed[theta] = self._poses(theta)
+            self._posed[theta] = {name: T[0] for name, T in self.poses_over([theta]).items()}
             for T in self._posed[theta].values():
                 T.flags.writeable = False  # shared by every caller: read only
         return dict(self._posed[theta])
 
-    def _poses(self, theta: float) -> dict[str, np.ndarray]:
+    def poses_over(self, ts) -> dict[str, np.ndarray]:
+        """name -> (N, 4, 4) poses of every part at the N crank angles ``ts`` (rad), at once."""
         mech, st = self.mechanism, self.stack
-        a = link_angles(mech, theta)
-        J = joint_positions(mech, theta)
-        gp = gear_poses(mech, theta, self.clock)
-        out = dict(self.static)
-        for j in range(1, len(mech.chain.links) + 1):
-            out[f"B{j}"] = pose_z(J[j - 1][0], J[j - 1][1], st.plate_z(j), a[j])
-        out["pen_holder"] = pose_z(J[-1][0], J[-1][1], st.plate_z(len(mech.chain.links)), a[-1])
+        ts = np.atleast_1d(np.asarray(ts, dtype=float))
+        n = len(mech.chain.links)
+        a = link_angles_over(mech, ts)
+        J = joint_positions_over(mech, ts, a)
+        gp = gear_tracks(mech, ts, self.clock)
+        out = {name: np.broadcast_to(T, (len(ts), 4, 4)) for name, T in self.static.items()}
+        for j in range(1, n + 1):
+            out[f"B{j}"] = poses_z(J[:, j - 1, 0], J[:, j - 1, 1], st.plate_z(j), a[:, j])
+        out["pen_holder"] = poses_z(J[:, -1, 0], J[:, -1, 1], st.plate_z(n), a[:, -1])
         for name, p in gp.items():
             layer = 0 if name in ("G1", "drive") else int(name[1:]) - (1 if name[0] == "G" else 0)
-            out[name] = pose_z(p.centre[0], p.centre[1], st.layer(layer), p.angle)
+            out[name] = poses_z(p.centre[:, 0], p.centre[:, 1], st.layer(layer), p.angle)
         for s in mech.belt_stages:  # a belt keeps its shape in its link's frame
-            out[f"belt{s.j}"] = pose_z(J[s.j - 1][0], J[s.j - 1][1], st.layer(s.j), a[s.j])
+            out[f"belt{s.j}"] = poses_z(J[:, s.j - 1, 0], J[:, s.j - 1, 1], st.layer(s.j), a[:, s.j])
         drive = gp["drive"]
         for name in ("drive_axle", "crank"):
             z = 0.0 if name == "drive_axle" else -self.params.base_thickness - st.gap
-            out[name] = pose_z(drive.centre[0], drive.centre[1], z, drive.angle)
+            out[name] = poses_z(drive.centre[:, 0], drive.centre[:, 1], z, drive.angle)
         return out
 
 
