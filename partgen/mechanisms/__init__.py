@@ -5,6 +5,7 @@ Mechanism folders never import each other."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Mapping
 from importlib import import_module
 from pathlib import Path
 
@@ -24,7 +25,30 @@ KINDS = (
     "bevel",
 )
 
-REGISTRY: dict[str, Mechanism] = {kind: import_module(f"{__name__}.{kind}").MECHANISM for kind in KINDS}
+class _Registry(Mapping):
+    """kind -> its ``Mechanism``, in the order of ``KINDS``; a kind's folder is imported the first
+    time it is asked for (a command that builds one kind imports only that one)."""
+
+    def __init__(self, kinds: tuple[str, ...], attr: str):
+        self._kinds, self._attr, self._got = kinds, attr, {}
+
+    def __getitem__(self, kind: str):
+        if kind not in self._kinds:
+            raise KeyError(kind)
+        if kind not in self._got:
+            mech = import_module(f"{__name__}.{kind}").MECHANISM
+            self._got[kind] = mech if self._attr == "" else getattr(mech, self._attr)
+        return self._got[kind]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._kinds)
+
+    def __len__(self) -> int:
+        return len(self._kinds)
+
+
+REGISTRY: Mapping[str, Mechanism] = _Registry(KINDS, "")
+_SCHEMAS: Mapping = _Registry(KINDS, "schema")  # kind -> its design schema, for the loader
 
 
 def get(kind: str) -> Mechanism:
@@ -40,5 +64,5 @@ def load_design(path: str | Path, over=None) -> LoadedDesign:
     """A design file validated against its kind's schema, with the command line's ``over``rides
     (see ``config.loader.load_design``)."""
     if over is None:
-        return _load_design(path, {k: m.schema for k, m in REGISTRY.items()})
-    return _load_design(path, {k: m.schema for k, m in REGISTRY.items()}, over)
+        return _load_design(path, _SCHEMAS)
+    return _load_design(path, _SCHEMAS, over)
