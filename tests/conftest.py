@@ -1,10 +1,18 @@
 """Shared fixtures: each kit is built once per test session (per xdist worker), and the test
 files that share an expensive kit run on one worker (``SHARED``, with ``--dist loadgroup``)."""
 
+import atexit
+import os
 import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
+
+# partgen remembers its auto choices (core.cache): the tests keep theirs in a folder of their own,
+# one per worker, removed at exit (never the user's ~/.cache/partgen)
+os.environ["PARTGEN_CACHE_DIR"] = _CACHE = tempfile.mkdtemp(prefix="partgen-test-cache-")
+atexit.register(shutil.rmtree, _CACHE, True)
 
 from partgen import pipeline
 

@@ -116,10 +116,10 @@ def test_gear_clocked_half_a_tooth_off_fails_its_mesh(default_kit):
 class OneLayer(Kit):
     """An assembly fault: plate B5 put on plate B3's level (with nothing else moved)."""
 
-    def poses(self, theta):
-        p = super().poses(theta)
+    def poses_over(self, ts):
+        p = super().poses_over(ts)
         p["B5"] = p["B5"].copy()
-        p["B5"][2, 3] = p["B3"][2, 3]
+        p["B5"][:, 2, 3] = p["B3"][:, 2, 3]
         return p
 
 
@@ -185,3 +185,15 @@ def test_check_a_built_kit_folder_and_notice_tampering(checked_default_kit):
 def test_sweep_samples_the_whole_cycle():
     t = sample_angles(360)
     assert t[0] == 0 and t[-1] == pytest.approx(2 * np.pi * 359 / 360) and len(np.unique(t)) == 360
+
+
+def test_poses_over_is_poses_at_each_angle(default_kit):
+    """The chain computes every pose at N angles at once (``poses_over``, what the sweep, the mesh
+    check and the GLB read): the same poses as ``poses`` at each angle, bit for bit."""
+    ts = sample_angles(48)
+    many = default_kit.poses_over(ts)
+    for i in (0, 7, 31, 47):
+        one = default_kit.poses(float(ts[i]))
+        assert set(one) == set(many)
+        for name, T in one.items():
+            assert np.array_equal(T, many[name][i]), name

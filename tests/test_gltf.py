@@ -13,6 +13,8 @@ from pathlib import Path
 
 import manifold3d
 import numpy as np
+
+from partgen.core.protocol import ParamsKit
 import pytest
 
 from partgen.core.parts import Part
@@ -220,6 +222,8 @@ class _Swing:
         m[:2, :2] = [[c, -s], [s, c]]
         m[:2, 3] = [40 * c, 40 * s]
         return {"bar": m, "post": np.eye(4)}
+
+    poses_over = ParamsKit.poses_over  # the protocol's default: poses at each value
 
 
 def _instances(kit):

@@ -6,17 +6,22 @@ that check (gears seated by their meshes, docs/tolerance.md) gives every margin,
 backlash margin moves with the backlash by its ``per_backlash``; ``design.tolerance.least_play``
 picks the least value on a 0.005 mm grid that meets the target on 20,000 fixed prints (seed 0).
 The design is then loaded with that number in place of ``auto``: the kit, its pinned design.yaml
-and every check see the number. One search per design per process.
+and every check see the number. One search per design per process, and the choice is remembered
+between runs (``core.cache``: under the resolved design, the design and printer documents,
+partgen's source and the libraries' versions, so a remembered choice is the one the search would
+make now).
 """
 
 from __future__ import annotations
 
 import copy
+import pickle
 from dataclasses import replace
 from pathlib import Path
 
 from ..config.loader import LoadedDesign
 from ..config.schema import AUTO_PLAY_START_MM
+from ..core.cache import recall, remember
 from ..core.protocol import tolerance_hook
 from ..design.tolerance import PLAY_STEP_MM, least_play
 from ..errors import ConfigError, DesignError
@@ -60,6 +65,11 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         raise ConfigError(raw.path, ".".join(KEY), f"auto needs a tolerance model: a {mech.kind} design has none yet")
     start = _with(raw, AUTO_PLAY_START_MM)
     spec = mech.resolve(start)
+    what = raw.digest().encode() + b"\0" + pickle.dumps(spec, protocol=5)
+    known = recall("auto-play", what)
+    if known is not None:
+        _DONE[key] = (known["value"], known["allocation"])
+        return _with(raw, known["value"]), known["allocation"]
     try:
         kit = mech.build(spec, None)
     except DesignError as e:
@@ -87,4 +97,5 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     alloc = {"key": ".".join(KEY), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
              "meshes": sum(m.what == "backlash" for m in model.margins), "limited_by": limit}
     _DONE[key] = (value, alloc)
+    remember("auto-play", what, {"value": value, "allocation": alloc})
     return _with(raw, value), alloc
