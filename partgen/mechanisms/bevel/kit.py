@@ -145,8 +145,9 @@ def resolve_bevel(loaded: LoadedDesign) -> BevelSpec:
                               "(nearly a crown gear): its toe reaches the apex; a smaller shaft angle or ratio")
     for i in pair.interference():
         t = pair.gears[i]
-        raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1} ({t.teeth} teeth, {t.virtual_teeth:.1f} "
-                          f"virtual) would be undercut: its mate's tip reaches below its involute; more teeth")
+        raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1} ({t.teeth} teeth, pitch cone "
+                          f"{math.degrees(t.pitch_angle):.1f}°) would be undercut: its mate's tip reaches below its "
+                          "spherical involute; more teeth")
     if pair.contact_ratio() < 1.1:
         raise ConfigError(loaded.path, "gears.teeth", f"a contact ratio of {pair.contact_ratio():.2f} (under 1.1): "
                           "more teeth or a larger addendum")

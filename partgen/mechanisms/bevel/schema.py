@@ -22,7 +22,8 @@ class BevelGears(Strict):
     module_mm: Length
     """Module at the heel (the teeth's outer, large end): each heel pitch diameter is teeth × module."""
     pressure_angle_deg: Annotated[float, Field(ge=14.5, le=30.0)] = 20.0
-    """Pressure angle of the heel's (virtual spur gear's) involute; 20 is standard."""
+    """Pressure angle of the spherical involute teeth (the plane of action's angle to the plane tangent to both pitch
+    cones); 20 is standard."""
     face_width_mm: Length
     """Length of the teeth along the pitch cone, from the heel inwards; at most a third of the cone distance."""
     backlash_per_gear_mm: Gap = 0.1
