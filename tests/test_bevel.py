@@ -2,7 +2,7 @@
 angle, the shipped mitre pair built, checked exactly in 3-D (0 mm³ at the designed backlash,
 overlapping with the backlash made negative), its flanks measured on the float32 mesh against the
 exact spherical involute surface (µm), traced (ratio within 1e-6), every STL one closed shell; a 75°
-pair; bad input."""
+pair and a 120° one (gear 2 leaning over gear 1); bad input (a crown or internal bevel refused)."""
 
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 CFG = ROOT / "configs" / "bevel_mitre.yaml"
 
 
-@pytest.mark.parametrize("z1,z2,sigma", [(20, 20, 90.0), (15, 25, 75.0), (18, 30, 50.0)])
+@pytest.mark.parametrize("z1,z2,sigma", [(20, 20, 90.0), (15, 25, 75.0), (18, 30, 50.0), (15, 25, 120.0), (20, 20, 140.0)])
 def test_pitch_cones_share_the_apex_and_roll(z1, z2, sigma):
     p = bevel_pair((z1, z2), 2.0, math.radians(20), math.radians(sigma), 6.0)
     g1, g2 = p.gears
@@ -161,11 +161,46 @@ def test_a_75_degree_pair_meshes_with_its_designed_backlash(tmp_path):
             assert intersection(kit.part(g).solid, P[g], kit.part("base").solid, P["base"])[0] == 0.0
 
 
+def test_a_120_degree_pair_leans_over_and_checks(tmp_path):
+    """Shafts at 120° (pitch cones 60° + 60°): gear 2 leans over gear 1, its block on a leg sloping
+    down square to its axis; the exact check passes (no overlap, the designed backlash, the gears clear
+    the base, the leg stays behind gear 2's back), the flanks are the spherical involute, and every
+    part is one closed shell."""
+    from partgen import pipeline
+
+    d = yaml.safe_load(CFG.read_text())
+    d["shaft_angle_deg"], d["gears"]["face_width_mm"], d["gears"]["chord_tolerance_mm"] = 120.0, 7.0, 0.003
+    p = tmp_path / "bevel120.yaml"
+    p.write_text(yaml.safe_dump(d, sort_keys=False))
+    spec = pipeline.load(p).spec
+    assert [math.degrees(g.pitch_angle) for g in spec.pair.gears] == pytest.approx([60.0, 60.0])
+    kit = build_bevel(spec)
+    assert spec.pair.axis2[2] < 0 and spec.leg_direction @ spec.pair.axis2 == pytest.approx(0.0, abs=1e-12)
+    result = MECHANISM.check(spec, kit, 2)
+    assert result.ok, [f.message for f in result.findings if f.severity == "fail"]
+    f = result.figures
+    assert f["max_overlap_mm3"] == 0.0 and 0.2 <= f["backlash_mm"]["min"] <= f["backlash_mm"]["max"] <= 0.206
+    assert f["closest_mm"]["gear2-base"] >= spec.gap - 1e-3
+    # the block's leg: every vertex of the base above the plate lies behind gear 2's hub along its axis
+    v, _ = mesh_arrays(kit.part("base").solid)
+    up = v[v[:, 2] > 0.01]
+    a = (up - spec.apex) @ spec.pair.axis2
+    post = np.hypot(up[:, 0], up[:, 1]) <= spec.shaft_radius[0] + 1e-6  # gear 1's post
+    assert (a[~post] <= spec.block_span[1] + 1e-6).all()
+    m = _flanks(kit, "gear2", spec.gear2)
+    assert m.teeth_seen == 20 and m.worst < 3.0e-3  # chord tolerance 0.003 here
+    for part in kit.parts:
+        vv, ff = mesh_arrays(part.solid)
+        mesh = trimesh.Trimesh(vv, ff)
+        assert mesh.is_watertight and len(mesh.split(only_watertight=False)) == 1, part.name
+
+
 @pytest.mark.parametrize("change,key,fragment", [
     ({"gears": {"face_width_mm": 12.0}}, "gears.face_width_mm", "third of the cone distance"),
     ({"gears": {"teeth": [12, 40]}}, "gears.teeth[0]", "undercut"),  # 12.5 virtual teeth against 139
     ({"shafts": {"diameter_mm": [8.0, 24.0]}}, "shafts.diameter_mm[1]", "wall"),
-    ({"shaft_angle_deg": 100.0}, "shaft_angle_deg", "90"),
+    ({"shaft_angle_deg": 130.0, "gears": {"teeth": [15, 25]}}, "shaft_angle_deg", "below 126.87°"),  # δ_2 93.2°
+    ({"shaft_angle_deg": 160.0}, "shaft_angle_deg", "150"),
 ])
 def test_bad_input_names_the_key(tmp_path, capsys, change, key, fragment):
     d = yaml.safe_load(CFG.read_text())

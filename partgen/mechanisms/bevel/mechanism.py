@@ -231,7 +231,10 @@ class Bevel:
         return [("Stand the base on the table: gear 1's post up, gear 2's block beside it.", ("base",)),
                 (f"Slide gear1 ({spec.gear1.teeth} teeth) down over the post, its teeth up.", ("gear1",)),
                 (f"Push the pin into the block's hole, slide gear2 ({spec.gear2.teeth} teeth) onto it, hub first, "
-                 "until its teeth sit in gear1's; turn gear1 by hand: both turn freely.", ("pin2", "gear2"))]
+                 "until its teeth sit in gear1's; turn gear1 by hand: both turn freely." +
+                 (" Gear2 leans over gear1 (shafts past 90°): its weight slides it down the pin into the mesh "
+                  "at rest; driven, the mesh's thrust pushes it back against its block." if spec.pair.axis2[2] < 0
+                  else ""), ("pin2", "gear2"))]
 
     def bill_text(self, spec: BevelSpec, man: dict, dest, seconds: float) -> str:
         p = spec.pair
