@@ -201,6 +201,8 @@ def test_a_120_degree_pair_leans_over_and_checks(tmp_path):
     ({"shafts": {"diameter_mm": [8.0, 24.0]}}, "shafts.diameter_mm[1]", "wall"),
     ({"shaft_angle_deg": 130.0, "gears": {"teeth": [15, 25]}}, "shaft_angle_deg", "below 126.87°"),  # δ_2 93.2°
     ({"shaft_angle_deg": 160.0}, "shaft_angle_deg", "150"),
+    ({"shaft_angle_deg": 122.0, "gears": {"teeth": [15, 25], "face_width_mm": 7.0}}, "shaft_angle_deg",
+     "at most 117.1°"),  # δ_2 85.3°: the toe at the apex
 ])
 def test_bad_input_names_the_key(tmp_path, capsys, change, key, fragment):
     d = yaml.safe_load(CFG.read_text())

@@ -142,20 +142,35 @@ def _lowest(profile: np.ndarray, axis: np.ndarray, apex_z: float) -> float:
     return apex_z + float((profile[:, 1] * uz - profile[:, 0] * side).min())
 
 
+def _clear_of_apex(pair: BevelPair) -> bool:
+    """Both gears' tip cones below 90° and their toes (the blank's nearest point) at least 1 mm from the apex."""
+    return all(t.tip_cone < math.pi / 2 - 1e-3 and float(t.blank()[:, 1].max()) <= -1.0 for t in pair.gears)
+
+
 def resolve_bevel(loaded: LoadedDesign) -> BevelSpec:
     d, p = loaded.design, loaded.printer
     g = d.gears
     pair = bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), math.radians(d.shaft_angle_deg),
                       g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
     tol = g.chord_tolerance_mm
+    make = lambda sigma: bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), sigma,  # noqa: E731
+                                    g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
+    if not _clear_of_apex(pair):
+        lo, hi = math.radians(30.0), pair.shaft_angle  # the steepest shaft angle that keeps both toes off the apex
+        if _clear_of_apex(make(lo)):
+            for _ in range(40):
+                mid = (lo + hi) / 2
+                lo, hi = (mid, hi) if _clear_of_apex(make(mid)) else (lo, mid)
+        i = max((0, 1), key=lambda k: pair.gears[k].pitch_angle)
+        raise ConfigError(loaded.path, "shaft_angle_deg", f"gear {i + 1}'s pitch cone is "
+                          f"{math.degrees(pair.gears[i].pitch_angle):.1f}° (nearly a crown gear): its tip cone "
+                          f"({math.degrees(pair.gears[i].tip_cone):.1f}°) brings its toe within 1 mm of the apex; for "
+                          f"these teeth and face the shaft angle must be at most {math.floor(10 * math.degrees(lo)) / 10:g}°")
     for i, tooth in enumerate(pair.gears):
         try:
             tooth.section(tol)
         except ValueError as e:
             raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1}'s teeth cannot be made: {e}") from None
-        if float(tooth.blank()[:, 1].max()) > -1.0:
-            raise ConfigError(loaded.path, "shaft_angle_deg", f"gear {i + 1}'s pitch cone is {math.degrees(tooth.pitch_angle):.1f}° "
-                              "(nearly a crown gear): its toe reaches the apex; a smaller shaft angle or ratio")
     for i in pair.interference():
         t = pair.gears[i]
         raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1} ({t.teeth} teeth, pitch cone "
