@@ -58,4 +58,5 @@ def hull_to_floor(points: np.ndarray, floor: float = -0.01, direction=(0.0, 0.0,
     if d[2] >= 0:
         raise ValueError("the leg's direction must point down")
     feet = pts + ((floor - pts[:, 2]) / d[2])[:, None] * d
+    feet[:, 2] = floor
     return m3d.Manifold.hull_points(np.vstack([pts, feet]))
