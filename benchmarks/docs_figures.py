@@ -18,6 +18,7 @@ it took (``fig.<section>._run``).
 from __future__ import annotations
 
 import argparse
+import math
 import datetime
 import json
 import subprocess
@@ -260,9 +261,51 @@ def printers(tmp: Path) -> dict:
     return {"table": table(["design", *[f"`{p}`" for p in PRINTERS]], rows)}
 
 
+def bevel(tmp: Path) -> dict:
+    """The bevel pairs: the shipped mitre pair and a 120° one, checked and traced; their flanks on the
+    float32 mesh against the exact spherical involute (partgen.testing.measure_bevel_flanks)."""
+    import numpy as np
+    import trimesh
+    import yaml
+
+    from partgen import pipeline
+    from partgen.geometry.solid import mesh_arrays
+    from partgen.mechanisms.bevel.kit import build_bevel
+    from partgen.testing import measure_bevel_flanks
+
+    d = yaml.safe_load((ROOT / "configs" / "bevel_mitre.yaml").read_text())
+    d.update(name="bevel_120", shaft_angle_deg=120.0)
+    d["gears"]["face_width_mm"] = 7.0
+    wide = tmp / "bevel_120.yaml"
+    wide.write_text(yaml.safe_dump(d, sort_keys=False))
+    out = {}
+    for key, cfg in (("mitre", "configs/bevel_mitre.yaml"), ("s120", str(wide))):
+        c = partgen("check", cfg, "-o", str(tmp / f"{key}_check"))
+        t = partgen("trace", cfg, "-o", str(tmp / f"{key}_trace"))
+        spec = pipeline.load(ROOT / cfg if not Path(cfg).is_absolute() else Path(cfg)).spec
+        kit = build_bevel(spec)
+        worst, mean = 0.0, []
+        for name, g in (("gear1", spec.gear1), ("gear2", spec.gear2)):
+            v, f = mesh_arrays(kit.part(name).solid)
+            mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
+            m = measure_bevel_flanks(mesh, g.teeth, g.module, g.pressure_angle, g.pitch_angle, g.backlash,
+                                     g.face_width, g.addendum, g.dedendum)
+            worst, mean = max(worst, m.worst), mean + [float(m.deviation.mean())]
+        f = c["figures"]
+        out[key] = {"pitch_angles_deg": " + ".join(f"{math.degrees(g.pitch_angle):.2f}" for g in spec.pair.gears),
+                    "base_angles_deg": " + ".join(f"{math.degrees(g.base_angle):.2f}" for g in spec.pair.gears),
+                    "cone_distance_mm": r(spec.pair.cone_distance, 3), "contact_ratio": r(spec.pair.contact_ratio(), 2),
+                    "flank_worst_um": r(1000 * worst, 2), "flank_mean_um": r(1000 * float(np.mean(mean)), 2),
+                    "overlap_mm3": f["max_overlap_mm3"], "check_samples": f["samples"],
+                    "backlash_min_mm": r(f["backlash_mm"]["min"], 3), "backlash_max_mm": r(f["backlash_mm"]["max"], 3),
+                    "te_pp_um": r(1000 * t["transmission_error_mm"]["peak_to_peak"], 1),
+                    "ratio_error": f"{t['ratio_relative_error']:.0e}" if t["ratio_relative_error"] else "0", "check_s": r(c["seconds"], 1)}
+    return out
+
+
 SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
             "tolerance": tolerance, "sweep": sweep, "bennett": bennett,
-            "calibrate": calibrate, "wrist": wrist,
+            "calibrate": calibrate, "wrist": wrist, "bevel": bevel,
             "printers": printers}
 
 

@@ -1,22 +1,32 @@
 """A straight bevel gear pair on intersecting shafts at any shaft angle Σ (pure math: numpy; mm, rad).
 
-Tooth form: **Tredgold's back-cone approximation, made conical.** Gear i (z_i teeth, module m at
-the heel, the outer end) has pitch cone angle δ_i (tan δ_1 = sin Σ / (z_2/z_1 + cos Σ),
-δ_2 = Σ − δ_1), heel pitch radius r_i = m z_i / 2 and outer cone distance R = r_i / sin δ_i (both
-gears' pitch cones share their apex and R). Its back cone (the cone touching the heel pitch circle,
-its generators square to the pitch cone's) develops into the plane as the *virtual spur gear* of
-r_v = r / cos δ, z_v = z / cos δ teeth; the heel tooth profile is that virtual gear's involute
-tooth (addendum h_a, dedendum h_f along the back cone; radial flank below the virtual base circle).
-A point of the developed profile at virtual polar (r_v + u, φ_v) lies in 3-D at radius
-r + u cos δ, azimuth φ_v / cos δ, u sin δ nearer the apex than the heel pitch circle. Every tooth
-surface is the cone of straight lines from the common apex through the heel profile (straight
-bevel teeth: every section toward the apex a similar copy, scaled about the apex); the tip and root
-cones pass through the apex (addendum and dedendum angles atan(h_a / R), atan(h_f / R)).
+Tooth form: **the spherical involute**, exact. Gear i (z_i teeth, module m at the heel, the outer
+end) has pitch cone angle δ_i (tan δ_1 = sin Σ / (z_2/z_1 + cos Σ), δ_2 = Σ − δ_1, each below 90°:
+90° is a crown gear, more an internal bevel), heel pitch radius r_i = m z_i / 2 and outer cone
+distance R = r_i / sin δ_i (both gears' pitch cones share their apex and R). Its base cone has the
+half-angle δ_b, sin δ_b = sin δ cos α: the plane of action (through the apex, along the pitch line,
+at α to the plane tangent to both pitch cones) touches both base cones. Rolling that plane on the
+base cone, each of its lines through the apex sweeps a tooth surface: the cone from the apex over
+the **spherical involute** — on the unit sphere round the apex, with the generating great circle
+rolled θ = φ sin δ_b from where it touches the base circle at azimuth φ, the point at polar angle
+p (from the gear's body axis), cos p = cos δ_b cos θ, and azimuth
 
-The exact conjugate surface for intersecting axes is the spherical involute (or the octoid of a
-planar crown generator); the Tredgold tooth is the standard engineering approximation of it (the
-back cone for the sphere through the heel), within the backlash for the virtual tooth counts the
-resolver accepts; the 3-D check measures what is left (transmission error and backlash).
+    ev(p) = θ / sin δ_b − atan(tan θ / sin δ_b)          (the spherical involute function)
+
+(the planar involute function inv α = tan α − α in the limit of a small sphere patch). Two gears
+with these flanks are exactly conjugate at any shaft angle: their contact is a line through the
+apex on the plane of action, the ratio constant (Tredgold's back-cone tooth, which partgen made
+before, approximates it to second order in the tooth height over R; the octoid, which a planar
+generating crown cuts, is conjugate to its crown but not exactly involute, and its contact line
+traces a figure-eight path — neither gains anything for a printed gear, where no cutter constrains
+the form). A flank's azimuth from its tooth's centre line at polar angle p is
+
+    ψ(p) = s / (2 r) + ev(δ) − ev(p),   s = π m / 2 − backlash (the heel pitch circle's arc),
+
+radial (ψ(δ_b), a plane through the axis) below the base cone. The tip and root cones pass through
+the apex (addendum and dedendum angles atan(h_a / R), atan(h_f / R)): every section of the tooth
+by a sphere round the apex is the same spherical outline scaled, every section by a plane square to
+the axis that outline's central projection from the apex (radius h tan p at h from the apex).
 
 Frame (each gear's local): the common apex at the origin, the gear's axis +z pointing from its body
 towards the apex (the body at z < 0), tooth 0 centred on +x. World: gear 1's axis z; gear 2's axis
@@ -35,7 +45,23 @@ import numpy as np
 
 from . import involute
 
-__all__ = ["BevelPair", "BevelTooth", "bevel_pair"]
+__all__ = ["BevelPair", "BevelTooth", "bevel_pair", "spherical_involute_function", "pitch_angle_limit"]
+
+
+def spherical_involute_function(p, base_angle: float) -> np.ndarray:
+    """ev(p): the azimuth (rad) of the spherical involute of the base cone ``base_angle`` δ_b at polar
+    angle ``p`` (rad, ≥ δ_b) from where it leaves the base circle (0 at p = δ_b)."""
+    cb, sb = math.cos(base_angle), math.sin(base_angle)
+    c = np.clip(np.cos(np.asarray(p, dtype=float)) / cb, -1.0, 1.0)
+    th = np.arccos(c)
+    return th / sb - np.arctan(np.tan(th) / sb)
+
+
+def pitch_angle_limit(teeth: tuple[int, int]) -> float:
+    """The shaft angle Σ (rad) at which the pair's pitch cone on the gear with more teeth reaches 90°
+    (a crown gear; beyond it an internal bevel): cos Σ = −z_small / z_large (π for equal teeth)."""
+    z1, z2 = sorted(int(z) for z in teeth)
+    return math.acos(-z1 / z2)
 
 
 @dataclass(frozen=True)
@@ -59,17 +85,24 @@ class BevelTooth:
         return self.module * self.teeth / 2
 
     @property
-    def virtual_radius(self) -> float:
-        """r_v = r / cos δ, the back cone's slant length to the axis."""
-        return self.pitch_radius / math.cos(self.pitch_angle)
-
-    @property
     def virtual_teeth(self) -> float:
+        """z / cos δ: the teeth of Tredgold's equivalent spur gear (the back cone developed), for comparison."""
         return self.teeth / math.cos(self.pitch_angle)
 
     @property
-    def virtual_base_radius(self) -> float:
-        return self.virtual_radius * math.cos(self.pressure_angle)
+    def base_angle(self) -> float:
+        """δ_b, sin δ_b = sin δ cos α: the base cone's half-angle (rad)."""
+        return math.asin(math.sin(self.pitch_angle) * math.cos(self.pressure_angle))
+
+    @property
+    def tip_cone(self) -> float:
+        """δ + atan(h_a / R): the tip cone's half-angle (rad)."""
+        return self.pitch_angle + math.atan(self.addendum / self.cone_distance)
+
+    @property
+    def root_cone(self) -> float:
+        """δ − atan(h_f / R): the root cone's half-angle (rad)."""
+        return self.pitch_angle - math.atan(self.dedendum / self.cone_distance)
 
     @property
     def heel_height(self) -> float:
@@ -81,79 +114,67 @@ class BevelTooth:
         """Arc thickness at the heel pitch circle, thinning included, mm."""
         return math.pi * self.module / 2 - self.backlash
 
-    def virtual_flank_angle(self, rho) -> np.ndarray:
-        """Polar angle (rad) in the developed back cone of the upper flank at virtual radius ρ from the
-        tooth's centre line (the lower: −); below the virtual base circle the flank is radial."""
-        rv, rb = self.virtual_radius, self.virtual_base_radius
-        a = self.pressure_angle
-        psi = self.tooth_thickness / (2 * rv) + involute.inv(a)
-        rho = np.maximum(np.asarray(rho, dtype=float), rb)
-        t = np.sqrt(np.maximum(rho * rho - rb * rb, 0.0)) / rb
-        return psi - (t - np.arctan(t))
+    def flank_angle(self, polar) -> np.ndarray:
+        """ψ(p): the azimuth (rad) from the tooth's centre line of the upper flank at polar angle ``polar``
+        (rad, from the body axis; the lower flank: −ψ); below the base cone the flank is radial."""
+        db = self.base_angle
+        p = np.maximum(np.asarray(polar, dtype=float), db)
+        return (self.tooth_thickness / (2 * self.pitch_radius) + float(spherical_involute_function(self.pitch_angle, db))
+                - spherical_involute_function(p, db))
 
-    def to_plane(self, u, phi_v, height: float | None = None) -> np.ndarray:
-        """(n, 2): the developed back-cone points at virtual radius r_v + u and angle φ_v, projected
-        from the apex onto the plane square to the axis ``height`` (default H, the heel pitch plane)
-        from the apex: radius (r + u cos δ) h / (H − u sin δ), azimuth φ_v / cos δ."""
-        d, H = self.pitch_angle, self.heel_height
-        h = H if height is None else height
-        u, phi_v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(phi_v, dtype=float))
-        rad = (self.pitch_radius + u * math.cos(d)) * h / (H - u * math.sin(d))
-        phi = phi_v / math.cos(d)
-        return np.column_stack([rad * np.cos(phi), rad * np.sin(phi)])
-
-    def plane_radius_to_u(self, rad, height: float | None = None) -> np.ndarray:
-        """The inverse of ``to_plane``'s radius: the back-cone height u of a point at radius ``rad`` in
-        the plane ``height`` from the apex."""
-        d, H = self.pitch_angle, self.heel_height
-        q = np.asarray(rad, dtype=float) * H / (H if height is None else height)
-        return H * (q - self.pitch_radius) / (H * math.cos(d) + q * math.sin(d))
+    def to_plane(self, polar, azimuth, height: float | None = None) -> np.ndarray:
+        """(n, 2): the directions at ``polar`` (from the body axis) and ``azimuth`` projected from the apex
+        onto the plane square to the axis ``height`` from it (default H, the heel pitch plane)."""
+        h = self.heel_height if height is None else height
+        p, a = np.broadcast_arrays(np.asarray(polar, dtype=float), np.asarray(azimuth, dtype=float))
+        rad = h * np.tan(p)
+        return np.column_stack([rad * np.cos(a), rad * np.sin(a)])
 
     def tip_angle(self) -> float:
-        """Polar half-angle (rad, developed) of the tooth at the virtual tip circle."""
-        return float(self.virtual_flank_angle(self.virtual_radius + self.addendum))
+        """Half the tooth's angular thickness (azimuth, rad) on the tip cone."""
+        return float(self.flank_angle(self.tip_cone))
 
     def section(self, tol: float, height: float | None = None) -> np.ndarray:
         """(n, 2) mm counter-clockwise: the gear's section by the plane square to its axis ``height``
-        from the apex (default the heel pitch plane) of the conical solid through the heel profile:
-        root arcs, flanks (the virtual involute, radial below its base circle), tip arcs; tooth 0 on
-        +x. Points spaced so a chord sags at most ~0.8 ``tol`` at the heel. ValueError for a pointed
-        tooth or one that fills its space at the root."""
-        z, rv, rb = self.teeth, self.virtual_radius, self.virtual_base_radius
-        ra, rr = rv + self.addendum, rv - self.dedendum
-        c = math.cos(self.pitch_angle)
-        psi_a = float(self.virtual_flank_angle(ra))
-        lo = max(rr, rb)
-        psi_r = float(self.virtual_flank_angle(lo))
+        from the apex (default the heel pitch plane): the central projection of the spherical outline —
+        root arcs, flanks (spherical involutes, radial below the base cone), tip arcs; tooth 0 on +x.
+        Points spaced so a chord sags at most ~0.8 ``tol`` in the heel pitch plane. ValueError for a
+        pointed tooth or one that fills its space at the root."""
+        z, db, pa, pf = self.teeth, self.base_angle, self.tip_cone, self.root_cone
+        if pa >= math.pi / 2 - 1e-6:
+            raise ValueError(f"the tip cone is {math.degrees(pa):.1f}° (90° or more): no section square to the axis")
+        if pf <= 0:
+            raise ValueError("the root cone closes on the axis")
+        psi_a = self.tip_angle()
+        lo = max(pf, db)
+        psi_r = float(self.flank_angle(lo))
         if psi_a <= 0:
-            raise ValueError(f"pointed teeth: {2 * ra * psi_a:.3f} mm at the heel's tip")
-        if psi_r / c >= math.pi / z:
+            raise ValueError(f"pointed teeth: {2 * self.cone_distance * math.sin(pa) * psi_a:.3f} mm at the heel's tip")
+        if psi_r >= math.pi / z:
             raise ValueError("the teeth fill their spaces at the root")
-        t_lo, t_a = math.sqrt(max(lo * lo - rb * rb, 0.0)) / rb, math.sqrt(ra * ra - rb * rb) / rb
-        # the involute's roll t (ρ = r_b √(1 + t²)): its radius of curvature is r_b t, so a chord over Δt sags
-        # r_b t Δt² / 8; from the cusp (t = 0) the arc r_b Δt² / 2 sags r_b Δt³ / 32 — the smaller step of the two
         step_tol = 0.8 * tol
-        cusp = (32 * step_tol / rb) ** (1 / 3)
-        ts = [t_lo]
-        while ts[-1] < t_a:
-            ts.append(min(t_a, ts[-1] + 0.9 * min(math.sqrt(8 * step_tol / (rb * max(ts[-1], 1e-12))), cusp)))
-        rho = rb * np.sqrt(1 + np.asarray(ts) ** 2)
-        u = rho - rv
-        ang = self.virtual_flank_angle(rho)
-        if rr < rb:  # radial below the base circle
-            u, ang = np.concatenate([[rr - rv], u]), np.concatenate([[psi_r], ang])
-        upper = self.to_plane(u, ang, height)  # root → tip
+        # the flank by its roll θ (cos p = cos δ_b cos θ): dense, then thinned to chords within the tolerance
+        cb = math.cos(db)
+        th = np.linspace(math.acos(min(math.cos(lo) / cb, 1.0)), math.acos(math.cos(pa) / cb), 4001)
+        polar = np.arccos(cb * np.cos(th))
+        dense = self.to_plane(polar, self.flank_angle(polar))
+        th = involute._adaptive(th, dense, step_tol)
+        polar = np.arccos(np.clip(cb * np.cos(th), -1.0, 1.0))
+        polar[0], polar[-1] = lo, pa
+        ang = self.flank_angle(polar)
+        if pf < db:  # radial below the base cone
+            polar, ang = np.concatenate([[pf], polar]), np.concatenate([[psi_r], ang])
+        upper = self.to_plane(polar, ang, height)  # root → tip
         lower = upper * np.array([1.0, -1.0])
 
-        def arc(uu: float, a0: float, a1: float) -> np.ndarray:  # developed angles a0 → a1 at height uu
-            r = float(np.hypot(*self.to_plane(uu, 0.0, height)[0]))
-            n = max(2, math.ceil(abs(a1 - a0) / c / (2 * math.acos(max(1 - step_tol / r, -1.0)))) + 1)
-            return self.to_plane(np.full(n, uu), np.linspace(a0, a1, n), height)
+        def arc(p: float, a0: float, a1: float) -> np.ndarray:  # azimuths a0 → a1 on the cone p
+            r = self.heel_height * math.tan(p)
+            n = max(2, math.ceil(abs(a1 - a0) / (2 * math.acos(max(1 - step_tol / r, -1.0)))) + 1)
+            return self.to_plane(np.full(n, p), np.linspace(a0, a1, n), height)
 
-        half = math.pi / z * c  # half a pitch, developed
-        ua, ur = self.addendum, -self.dedendum
-        tooth = np.vstack([arc(ur, -half, -psi_r)[:-1], lower, arc(ua, -psi_a, psi_a)[1:-1], upper[::-1],
-                           arc(ur, psi_r, half)[1:-1]])
+        half = math.pi / z
+        tooth = np.vstack([arc(pf, -half, -psi_r)[:-1], lower, arc(pa, -psi_a, psi_a)[1:-1], upper[::-1],
+                           arc(pf, psi_r, half)[1:-1]])
         return involute.repeat_tooth(tooth, z)
 
     def blank(self, margin: float = 0.5) -> np.ndarray:
@@ -230,24 +251,31 @@ class BevelPair:
         x2 /= np.linalg.norm(x2)
         return np.column_stack([x2, np.cross(z2, x2), z2])
 
+    def _action(self) -> tuple[list[float], list[float]]:
+        """On the unit sphere round the apex, along the plane of action's great circle: (λ_i, the arc
+        from the pitch point to where it touches gear i's base circle, cos δ_i = cos δ_b,i cos λ_i;
+        μ_i, the arc from that point to where gear i's tip cone crosses it, cos δ_a,i = cos δ_b,i cos μ_i)."""
+        lam = [math.acos(min(math.cos(g.pitch_angle) / math.cos(g.base_angle), 1.0)) for g in self.gears]
+        mu = [math.acos(min(math.cos(g.tip_cone) / math.cos(g.base_angle), 1.0)) for g in self.gears]
+        return lam, mu
+
     def contact_ratio(self) -> float:
-        """Transverse contact ratio of the two virtual spur gears at the heel."""
-        g1, g2 = self.gears
-        a = self.pressure_angle
-        path = sum(math.sqrt((g.virtual_radius + g.addendum) ** 2 - g.virtual_base_radius ** 2) for g in (g1, g2))
-        path -= (g1.virtual_radius + g2.virtual_radius) * math.sin(a)
-        return path / (math.pi * self.module * math.cos(a))
+        """The arc of action on the plane of action's great circle (each tip cone to the pitch point)
+        over the base pitch along it (2π sin δ_b / z, the same for both gears)."""
+        lam, mu = self._action()
+        g = self.gears[0]
+        return sum(m - l for m, l in zip(mu, lam)) / (2 * math.pi * math.sin(g.base_angle) / g.teeth)
 
     def interference(self) -> list[int]:
-        """The gears (0, 1) whose mate's tip reaches below the involute on them (the line of action's
-        end beyond the tangency point, or its contact under the root): undercut/interference."""
+        """The gears (0, 1) whose mate's tip reaches below the spherical involute on them (the arc of
+        action's end beyond where it touches their base circle, or its contact under their root cone):
+        undercut/interference."""
+        lam, mu = self._action()
         bad = []
-        a = self.pressure_angle
         for i in (0, 1):
-            me, mate = self.gears[i], self.gears[1 - i]
-            reach = math.sqrt((mate.virtual_radius + mate.addendum) ** 2 - mate.virtual_base_radius ** 2)
-            L = (me.virtual_radius + mate.virtual_radius) * math.sin(a) - reach
-            if L < 0 or math.hypot(me.virtual_base_radius, L) < me.virtual_radius - me.dedendum:
+            me, k = self.gears[i], 1 - i
+            L = lam[i] - (mu[k] - lam[k])  # the end of the action, from gear i's base circle
+            if L < 0 or math.acos(math.cos(me.base_angle) * math.cos(L)) < me.root_cone:
                 bad.append(i)
         return bad
 

@@ -50,9 +50,13 @@ def cone_height_span(tooth: BevelTooth) -> tuple[float, float]:
     return float(b[0, 1]), float(b[5, 1])
 
 
-def hull_to_floor(points: np.ndarray, floor: float = -0.01) -> m3d.Manifold:
-    """The convex hull of ``points`` (n, 3) and their feet on the plane z = ``floor``: a block and
-    everything under it down to there."""
-    feet = np.array(points, dtype=float)
+def hull_to_floor(points: np.ndarray, floor: float = -0.01, direction=(0.0, 0.0, -1.0)) -> m3d.Manifold:
+    """The convex hull of ``points`` (n, 3) and their feet on the plane z = ``floor``, each reached along
+    ``direction`` (pointing down; default straight down): a block and its leg down to there."""
+    pts = np.asarray(points, dtype=float)
+    d = np.asarray(direction, dtype=float)
+    if d[2] >= 0:
+        raise ValueError("the leg's direction must point down")
+    feet = pts + ((floor - pts[:, 2]) / d[2])[:, None] * d
     feet[:, 2] = floor
-    return m3d.Manifold.hull_points(np.vstack([points, feet]))
+    return m3d.Manifold.hull_points(np.vstack([pts, feet]))

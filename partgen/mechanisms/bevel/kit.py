@@ -4,7 +4,8 @@
 
 World frame (``design.bevel``): the base's top at z = 0, gear 1 about z through the origin, the
 common apex at (0, 0, z_A); gear 2's axis u_2 = (−sin Σ, 0, cos Σ) through the apex, its body
-beyond it along −u_2 (+x at Σ = 90°). z_A is the lowest that keeps gear 2 (teeth and hub)
+beyond it along −u_2 (+x at Σ = 90°; up and out above 90°, its block then on a leg sloping down
+square to u_2, behind gear 2's back). z_A is the lowest that keeps gear 2 (teeth and hub)
 ``frame.axial_gap_mm`` above the base, its block's hole a block wall above it, and gear 1 on a
 hub at least a millimetre long that stands the axial gap above the base. The mesh's thrust pushes
 each gear away from the apex: gear 1 onto nothing but its post (its hub's end is the gap above the
@@ -111,6 +112,18 @@ class BevelSpec:
         return self.shaft_radius[1] + self.press / 2 + self.block_wall
 
     @property
+    def leg_direction(self) -> np.ndarray:
+        """The way gear 2's block reaches down to the base: straight down up to Σ = 90°; above it gear 2
+        leans over gear 1, its body above its block's side of the base, and a plumb leg would pass
+        through it, so the leg slopes down square to gear 2's axis (−z less its part along u_2): it
+        stays behind gear 2's back, within the block's span along the axis."""
+        u = self.pair.axis2
+        if u[2] >= 0:
+            return np.array([0.0, 0.0, -1.0])
+        d = np.array([0.0, 0.0, -1.0]) + u[2] * u
+        return d / np.linalg.norm(d)
+
+    @property
     def pin_span(self) -> tuple[float, float]:
         """(start, end) local a of gear 2's pin: 1 mm proud of the block's far face to gear 2's toe face."""
         return self.block_span[0] - 1.0, float(self.gear2.toe_root[1])
@@ -129,24 +142,40 @@ def _lowest(profile: np.ndarray, axis: np.ndarray, apex_z: float) -> float:
     return apex_z + float((profile[:, 1] * uz - profile[:, 0] * side).min())
 
 
+def _clear_of_apex(pair: BevelPair) -> bool:
+    """Both gears' tip cones below 90° and their toes (the blank's nearest point) at least 1 mm from the apex."""
+    return all(t.tip_cone < math.pi / 2 - 1e-3 and float(t.blank()[:, 1].max()) <= -1.0 for t in pair.gears)
+
+
 def resolve_bevel(loaded: LoadedDesign) -> BevelSpec:
     d, p = loaded.design, loaded.printer
     g = d.gears
     pair = bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), math.radians(d.shaft_angle_deg),
                       g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
     tol = g.chord_tolerance_mm
+    make = lambda sigma: bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), sigma,  # noqa: E731
+                                    g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
+    if not _clear_of_apex(pair):
+        lo, hi = math.radians(30.0), pair.shaft_angle  # the steepest shaft angle that keeps both toes off the apex
+        if _clear_of_apex(make(lo)):
+            for _ in range(40):
+                mid = (lo + hi) / 2
+                lo, hi = (mid, hi) if _clear_of_apex(make(mid)) else (lo, mid)
+        i = max((0, 1), key=lambda k: pair.gears[k].pitch_angle)
+        raise ConfigError(loaded.path, "shaft_angle_deg", f"gear {i + 1}'s pitch cone is "
+                          f"{math.degrees(pair.gears[i].pitch_angle):.1f}° (nearly a crown gear): its tip cone "
+                          f"({math.degrees(pair.gears[i].tip_cone):.1f}°) brings its toe within 1 mm of the apex; for "
+                          f"these teeth and face the shaft angle must be at most {math.floor(10 * math.degrees(lo)) / 10:g}°")
     for i, tooth in enumerate(pair.gears):
         try:
             tooth.section(tol)
         except ValueError as e:
             raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1}'s teeth cannot be made: {e}") from None
-        if float(tooth.blank()[:, 1].max()) > -1.0:
-            raise ConfigError(loaded.path, "shaft_angle_deg", f"gear {i + 1}'s pitch cone is {math.degrees(tooth.pitch_angle):.1f}° "
-                              "(nearly a crown gear): its toe reaches the apex; a smaller shaft angle or ratio")
     for i in pair.interference():
         t = pair.gears[i]
-        raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1} ({t.teeth} teeth, {t.virtual_teeth:.1f} "
-                          f"virtual) would be undercut: its mate's tip reaches below its involute; more teeth")
+        raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"gear {i + 1} ({t.teeth} teeth, pitch cone "
+                          f"{math.degrees(t.pitch_angle):.1f}°) would be undercut: its mate's tip reaches below its "
+                          "spherical involute; more teeth")
     if pair.contact_ratio() < 1.1:
         raise ConfigError(loaded.path, "gears.teeth", f"a contact ratio of {pair.contact_ratio():.2f} (under 1.1): "
                           "more teeth or a larger addendum")
@@ -212,7 +241,9 @@ def build_bevel(s: BevelSpec, progress=None) -> BevelKit:
     corners = np.array([[x, y, a] for x in (-k, k) for y in (-k, k) for a in (far, near)])
     T = s.pin_frame
     world = corners @ T[:3, :3].T + T[:3, 3]
-    block = hull_to_floor(world)
+    block = hull_to_floor(world, direction=s.leg_direction)
+    feet = world + ((-0.01 - world[:, 2]) / s.leg_direction[2])[:, None] * s.leg_direction
+    world = np.vstack([world, feet])
     hole = extrude(circle(r2s + s.press / 2, ftol, hole=True), near - far + 20.0, far - 10.0).transform(T[:3, :])
     foot1 = float(s.gear1.blank()[2, 0]) + s.margin  # gear 1's heel tip circle, and the margin
     xs = [min(-foot1, float(world[:, 0].min()) - s.margin), max(foot1, float(world[:, 0].max()) + s.margin)]

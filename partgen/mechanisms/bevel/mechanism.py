@@ -110,11 +110,11 @@ class Bevel:
         g = p.gears
         return {"teeth": list(p.teeth), "module_mm": p.module, "pressure_angle_deg": r6(math.degrees(p.pressure_angle)),
                 "shaft_angle_deg": r6(math.degrees(p.shaft_angle)),
-                "tooth_form": "Tredgold back-cone involute, conical (straight teeth through the apex)",
+                "tooth_form": "spherical involute (exact; straight teeth through the apex)",
                 "pitch_angle_deg": [r6(math.degrees(t.pitch_angle)) for t in g],
                 "pitch_diameter_mm": [r6(2 * t.pitch_radius) for t in g],
                 "tip_diameter_mm": [r6(2 * t.blank(0.0)[2, 0]) for t in g],
-                "virtual_teeth": [r6(t.virtual_teeth) for t in g],
+                "base_angle_deg": [r6(math.degrees(t.base_angle)) for t in g],
                 "cone_distance_mm": r6(p.cone_distance), "face_width_mm": g[0].face_width,
                 "contact_ratio": r6(p.contact_ratio()), "ratio": f"{p.teeth[1]}/{p.teeth[0]}",
                 "apex_height_mm": r6(spec.z_apex)}
@@ -231,7 +231,10 @@ class Bevel:
         return [("Stand the base on the table: gear 1's post up, gear 2's block beside it.", ("base",)),
                 (f"Slide gear1 ({spec.gear1.teeth} teeth) down over the post, its teeth up.", ("gear1",)),
                 (f"Push the pin into the block's hole, slide gear2 ({spec.gear2.teeth} teeth) onto it, hub first, "
-                 "until its teeth sit in gear1's; turn gear1 by hand: both turn freely.", ("pin2", "gear2"))]
+                 "until its teeth sit in gear1's; turn gear1 by hand: both turn freely." +
+                 (" Gear2 leans over gear1 (shafts past 90°): its weight slides it down the pin into the mesh "
+                  "at rest; driven, the mesh's thrust pushes it back against its block." if spec.pair.axis2[2] < 0
+                  else ""), ("pin2", "gear2"))]
 
     def bill_text(self, spec: BevelSpec, man: dict, dest, seconds: float) -> str:
         p = spec.pair
@@ -240,7 +243,7 @@ class Bevel:
                  f"shafts at {math.degrees(p.shaft_angle):g}°, pitch cones {math.degrees(p.gears[0].pitch_angle):.3f}° "
                  f"+ {math.degrees(p.gears[1].pitch_angle):.3f}°, cone distance {p.cone_distance:.3f} mm, face "
                  f"{p.gears[0].face_width:g} mm; ratio {p.teeth[1]}:{p.teeth[0]} (input turns per output turn)",
-                 "teeth: Tredgold back-cone involute at the heel, straight through the apex (conical)"]
+                 "teeth: spherical involute (exact), straight through the apex (conical)"]
         lines += [f"{q['name']:<8}{q['role']:<6}{q['triangles']:>9} triangles {q['volume_mm3'] / 1000:8.2f} cm3 "
                   f"{q['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in q['bbox_mm'])} mm" for q in man["parts"]]
         lines.append(f"wrote {dest}/ in {seconds:.2f} s")
@@ -277,7 +280,7 @@ class Bevel:
                          [["teeth", *d["teeth"]], ["pitch cone angle °", *d["pitch_angle_deg"]],
                           ["heel pitch diameter mm", *d["pitch_diameter_mm"]],
                           ["heel tip diameter mm", *d["tip_diameter_mm"]],
-                          ["virtual (back-cone) teeth", *d["virtual_teeth"]]]) \
+                          ["base cone angle °", *d["base_angle_deg"]]]) \
             + (f"<p>Module {d['module_mm']:g} mm at the heel, pressure angle {d['pressure_angle_deg']:g}°, shafts at "
                f"{d['shaft_angle_deg']:g}°, cone distance {d['cone_distance_mm']:.3f} mm, face width "
                f"{d['face_width_mm']:g} mm, contact ratio {d['contact_ratio']:.2f}; ratio {d['ratio']}. Teeth: "

@@ -22,7 +22,8 @@ class BevelGears(Strict):
     module_mm: Length
     """Module at the heel (the teeth's outer, large end): each heel pitch diameter is teeth × module."""
     pressure_angle_deg: Annotated[float, Field(ge=14.5, le=30.0)] = 20.0
-    """Pressure angle of the heel's (virtual spur gear's) involute; 20 is standard."""
+    """Pressure angle of the spherical involute teeth (the plane of action's angle to the plane tangent to both pitch
+    cones); 20 is standard."""
     face_width_mm: Length
     """Length of the teeth along the pitch cone, from the heel inwards; at most a third of the cone distance."""
     backlash_per_gear_mm: Gap = 0.1
@@ -82,9 +83,10 @@ class BevelDesign(Strict):
     printer: Annotated[str, Field(min_length=1, max_length=500)]
     """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
     in the design's folder, relative to it (--printer overrides it)."""
-    shaft_angle_deg: Annotated[float, Field(ge=30.0, le=90.0)] = 90.0
-    """Angle between the two (intersecting) shafts, 30 to 90; 90 for a right-angle (mitre, with equal teeth) pair
-    (above 90 gear 2's block would stand under gear 2: not made)."""
+    shaft_angle_deg: Annotated[float, Field(ge=30.0, le=150.0)] = 90.0
+    """Angle between the two (intersecting) shafts, 30 to 150; 90 for a right-angle (mitre, with equal teeth) pair.
+    Above 90 only while both pitch cones stay below 90° (cos Σ > −z_small/z_large: a crown gear at 90°, an internal
+    bevel beyond, are not made); gear 2 then leans over gear 1, its block on a leg sloping down behind its back."""
     gears: BevelGears
     """The two straight bevel gears: teeth, module, pressure angle, face width, play."""
     shafts: BevelShafts = BevelShafts()
@@ -100,8 +102,17 @@ class BevelDesign(Strict):
     def _face(self):
         import math
 
+        from ...design.bevel import pitch_angle_limit
+
         z1, z2 = self.gears.teeth
         s = math.radians(self.shaft_angle_deg)
+        limit = math.degrees(pitch_angle_limit((z1, z2)))
+        if self.shaft_angle_deg >= limit - 1e-6:
+            d1 = math.degrees(math.atan2(math.sin(s), z2 / z1 + math.cos(s)))
+            big, d = (1, d1) if z1 > z2 else (2, self.shaft_angle_deg - d1)
+            raise ValueError(f"[shaft_angle_deg] {self.shaft_angle_deg:g}° makes gear {big}'s pitch cone {d:.1f}° (90° is a "
+                             f"crown gear, more an internal bevel: neither is made): for {z1}/{z2} teeth the shaft "
+                             f"angle must stay below {limit:.2f}°")
         d1 = math.atan2(math.sin(s), z2 / z1 + math.cos(s))
         R = self.gears.module_mm * z1 / (2 * math.sin(d1))
         if self.gears.face_width_mm > R / 3 + 1e-9:
