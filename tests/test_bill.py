@@ -12,6 +12,7 @@ import pytest
 import trimesh
 
 from partgen.cli.main import main
+from partgen.core.parts import Part, Stock
 from partgen.export.bill import bill_sections, shopping_list, stock_items
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -49,26 +50,31 @@ def test_build_prints_the_bill(belt_kit, capsys):
     assert Counter({int(t): int(q) for q, _, t in bought}) == Counter(b["teeth"] for b in belts)
 
 
-def test_stock_items_groups_pins_and_fill():
-    purchased = [
-        {"name": "pin_a", "role": "pin", "diameter_mm": 10.0, "length_mm": 40.0, "material": "steel"},
-        {"name": "pin_b", "role": "pin", "diameter_mm": 10.0, "length_mm": 40.0, "material": "steel"},
-        {"name": "pin_c", "role": "pin", "diameter_mm": 10.0, "length_mm": 55.5, "material": "steel"},
-        {"name": "fill_link01", "role": "counterweight fill", "part": "link01",
-         "slugs": {"count": 7, "kind": "steel shot", "diameter_mm": 4.5, "length_mm": 4.5},
-         "binder": {"name": "epoxy", "volume_cm3": 1.25}},
-        {"name": "fill_link02", "role": "counterweight fill", "part": "link02",
-         "slugs": {"count": 3, "kind": "steel shot", "diameter_mm": 4.5, "length_mm": 4.5},
-         "binder": {"name": "epoxy", "volume_cm3": 0.5}},
+def _bought(name, *lines, role="bought", **info):
+    return Part(name, role, None, printed=False, info=tuple(info.items()), stock=tuple(Stock(*l) for l in lines))
+
+
+def test_stock_items_groups_each_parts_own_lines():
+    """Each bought part says what to buy for it (``Part.stock``): equal items of equal size are
+    one line with the quantities summed and the names they serve; a part with no lines is its
+    ``item`` (or role) with its sizes in mm."""
+    bought = [
+        _bought("pin_a", ("steel pin", 1, "Ø10 × 40.0 mm")),
+        _bought("pin_b", ("steel pin", 1, "Ø10 × 40.0 mm")),
+        _bought("pin_c", ("steel pin", 1, "Ø10 × 55.5 mm")),
+        _bought("fill_link01", ("steel shot slug", 7, "Ø4.5 × 4.5 mm", "link01"), ("epoxy", 1, "1.25 cm³", "link01")),
+        _bought("fill_link02", ("steel shot slug", 3, "Ø4.5 × 4.5 mm", "link02"), ("epoxy", 1, "0.50 cm³", "link02")),
+        _bought("rod1", item="M5 threaded rod", diameter_mm=5.0, length_mm=31.5),
     ]
-    items = {(item, size): (q, used) for item, q, size, used in stock_items(purchased)}
+    items = {(item, size): (q, used) for item, q, size, used in stock_items(bought)}
     assert items[("steel pin", "Ø10 × 40.0 mm")] == (2, ["pin_a", "pin_b"])
     assert items[("steel pin", "Ø10 × 55.5 mm")][0] == 1
     assert items[("steel shot slug", "Ø4.5 × 4.5 mm")] == (10, ["link01", "link02"])
     assert {k[1] for k in items if k[0] == "epoxy"} == {"1.25 cm³", "0.50 cm³"}
-    text = shopping_list({"parts": [{"name": "a", "count": 2, "mass_g": 1.5}], "purchased": purchased,
-                          "design": {"material": "PLA"}})
+    assert items[("M5 threaded rod", "diameter 5 mm, length 31.5 mm")] == (1, ["rod1"])
+    text = shopping_list({"parts": [{"name": "a", "count": 2, "mass_g": 1.5}], "design": {"material": "PLA"}}, bought)
     assert "print: 2 parts (1 distinct), 3 g of PLA" in text and "10 × steel shot slug" in text
+    assert "buy: nothing" in shopping_list({"parts": [], "design": {}}, [])
 
 
 def test_report_shows_filament_and_bought_parts():
@@ -77,7 +83,7 @@ def test_report_shows_filament_and_bought_parts():
 
     loaded = load(CONFIGS / "gear_pair.yaml")
     kit = make_kit(loaded)
-    bought = [{"name": "pin_a", "role": "pin", "diameter_mm": 5.0, "length_mm": 20.0, "material": "steel"}] * 3
+    bought = [_bought(f"pin_{c}", ("steel pin", 1, "Ø5 × 20.0 mm")) for c in "abc"]
     sections = dict(bill_sections(kit, {}, bought, printed_groups(kit)))
     groups = printed_groups(kit)
     total = sum(len(g) * g[0].mesh.volume * kit.density for g in groups)

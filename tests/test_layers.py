@@ -143,3 +143,47 @@ def test_the_checker_can_fail(tmp_path, monkeypatch):
                    "mechanisms/wrist/kit.py imports another mechanism", "mechanisms/gear_chain/kit.py imports manifold3d",
                    "checks/c.py imports partgen.mechanisms", "errors.py imports partgen.pipeline"):
         assert breach in found, (breach, found)
+
+
+# the kinds and the words only a mechanism knows: its parts, roles and motions
+MECHANISM_WORDS = ("gear_chain", "bennett", "butterfly", "wrist", "gear_pair", "gear_train", "crossed_helical",
+                   "bevel", "planetary", "worm", "belt", "pulley", "slug", "binder", "pen_holder", "pen holder",
+                   "crank", "idler", "counterweight", "cross gear", "cross_gear", "monopole")
+SHARED = ("export", "checks", "core", "cli", "pipeline.py", "studies.py")
+
+
+def mechanism_words_in(root: Path) -> list[str]:
+    """``file:line: word`` for every mechanism word in the shared code under ``root`` (vendored
+    third-party code aside)."""
+    import re
+    pattern = re.compile("|".join(re.escape(w) for w in MECHANISM_WORDS), re.I)
+    found = []
+    for name in SHARED:
+        base = root / name
+        for path in ([base] if base.is_file() else sorted(base.rglob("*.py"))):
+            if "vendor" in path.parts:
+                continue
+            for n, line in enumerate(path.read_text().splitlines(), 1):
+                for m in pattern.finditer(line):
+                    found.append(f"{path.relative_to(root)}:{n}: {m.group(0)}")
+    return found
+
+
+def test_shared_code_names_no_mechanism():
+    """export/, checks/, core/, cli/, pipeline.py and studies.py know no kind: no kind, part, role
+    or motion of a mechanism is named there, in code or in prose (the registry's kinds come in as
+    data; a mechanism says its own texts)."""
+    from partgen.mechanisms import KINDS
+    assert set(KINDS) <= {w for w in MECHANISM_WORDS} | {"bennett_butterfly"}
+    assert mechanism_words_in(PKG) == []
+
+
+def test_the_word_check_can_fail(tmp_path):
+    (tmp_path / "checks").mkdir()
+    (tmp_path / "checks" / "x.py").write_text("def f(kit):\n    return kit.part('belt1')  # the belt\n")
+    for name in SHARED:
+        if not (tmp_path / name).exists() and not name.endswith(".py"):
+            (tmp_path / name).mkdir()
+        elif name.endswith(".py"):
+            (tmp_path / name).write_text("")
+    assert mechanism_words_in(tmp_path) == ["checks/x.py:2: belt", "checks/x.py:2: belt"]

@@ -1,5 +1,5 @@
 """Whether two gear outlines in mesh have a free relative angle (shapely, mm, rad): the exact
-Monte Carlos' test of a printed mesh (``gear_pair/exact.py``, ``gear_chain/exact.py``)."""
+Monte Carlos' test of a printed mesh (the mechanisms' ``exact.py``)."""
 
 from __future__ import annotations
 

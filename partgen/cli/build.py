@@ -12,7 +12,7 @@ __all__ = ["add_parser", "run"]
 
 def add_parser(sub) -> None:
     p = sub.add_parser("build", help="build the STL kit, manifest and assembly of a design")
-    p.add_argument("config", help="design YAML (configs/butterfly.yaml)")
+    p.add_argument("config", help="design YAML (one of configs/*.yaml, or your own)")
     add_common_options(p, "output folder (default out/<design name>/)",
                        json_help="print one JSON object (ok, kit folder, parts) and nothing else")
     p.set_defaults(run=run)
@@ -82,5 +82,5 @@ def run(args) -> int:
     print(mech.bill_text(spec, man, dest, seconds))
     if loaded.auto:
         print(auto_text(loaded.auto))
-    print(shopping_list(man))
+    print(shopping_list(man, [p for p in kit.parts if not p.printed]))
     return 0

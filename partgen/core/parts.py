@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Part", "Bore", "Contact"]
+__all__ = ["Part", "Bore", "Contact", "Stock"]
 
 
 @dataclass(frozen=True)
@@ -22,9 +22,21 @@ class Bore:
 
 
 @dataclass(frozen=True)
+class Stock:
+    """One line of what to buy for a bought part, as the bill shows it: the item (what to ask a
+    shop for), how many, its stock size, and the name in the kit it serves (default: the part's)."""
+
+    item: str
+    quantity: int
+    size: str
+    serves: str = ""
+
+
+@dataclass(frozen=True)
 class Part:
     """A part as designed: its solid in the local frame; ``print_flip`` prints it upside down;
-    ``printed`` False for a bought part (a belt), modelled for the checks but not exported."""
+    ``printed`` False for a bought part, modelled for the checks but not exported (``stock``
+    says what to buy for it)."""
 
     name: str
     role: str
@@ -35,6 +47,7 @@ class Part:
     printed: bool = True
     info: tuple = ()
     bores: tuple[Bore, ...] = ()  # what takes a pin or axle (checks.bores tests each is open)
+    stock: tuple[Stock, ...] = ()  # a bought part: what to buy for it (the bill's lines)
 
 
 @dataclass(frozen=True)
@@ -42,8 +55,8 @@ class Contact:
     """Two parts of a kit meant to touch, and how (``checks.fits`` measures each over the motion).
 
     kind: "running" (turns on it, radial gap = running clearance / 2), "press" (D-fit, gap = press
-    clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh), "belt" (a belt
-    drive between two pulleys: the mechanism checks it). window: world
+    clearance / 2), "thrust" (rests on it face to face), "mesh" (gears in mesh); any other kind
+    is the mechanism's own, which it checks itself (the shared checks pass it by). window: world
     z-range where the fit is (the bore's length), None for thrust and mesh. radial_gap: the designed
     radial clearance, mm."""
 

@@ -117,7 +117,7 @@ class Mechanism(Protocol):
     kind: str            # the design file's ``kind:``
     title: str           # a human name for the kind
     schema: type         # the pydantic model of its design YAML
-    motion: Motion       # the motion parameter: its label ("crank angle", "bend", …), unit and range
+    motion: Motion       # the motion parameter: its label (the mechanism's name for its input), unit and range
     role_colours: dict   # part role -> colour (#rrggbb) in pictures, the GLB and the report
     csv_header: str      # the first line `trace --csv` writes (and recognises as its own file)
     trace_needs_kit: bool  # whether `trace` needs the built kit (else it traces the design alone)

@@ -14,7 +14,7 @@ from .assembly import assembly_section
 __all__ = ["bill_sections", "stock_items", "shopping_list", "printed_rows"]
 
 
-def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], groups=None,
+def bill_sections(kit: Kit, colours: dict[str, str], purchased: list, groups=None,
                   steps: list | None = None) -> list[tuple[str, str]]:
     """[("Bill of parts", html), ("Filament", html)], when the kit has bought parts ("Bought parts",
     html), and with ``steps`` (``export.assembly.steps_of``) ("Assembly", html): the steps in order
@@ -65,7 +65,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list[dict], grou
                for item, q, size, used in stock_items(purchased)]
         out.append(("Bought parts", R.table(["quantity", "item", "stock size", "for"], buy, left=4)))
     if steps:
-        for p in kit.parts:  # the bought parts as modelled (a belt's band)
+        for p in kit.parts:  # the bought parts as modelled
             if not p.printed and any(p.name in names for _, names in steps):
                 pictures[p.name] = render([(*mesh_arrays(p.solid), colour(p.role))], (300, 240))
         out.append(assembly_section(steps, pictures, printed_as))
@@ -76,9 +76,10 @@ def _g(x) -> str:
     return f"{float(x):.4g}"
 
 
-def stock_items(purchased: list[dict]) -> list[tuple[str, int, str, list[str]]]:
-    """What to buy, grouped: (item, quantity, stock size, the kit's names it serves), from the
-    manifest's ``purchased`` entries (belts, pins, counterweight fill: slugs and binder)."""
+def stock_items(bought) -> list[tuple[str, int, str, list[str]]]:
+    """What to buy, grouped: (item, quantity, stock size, the kit's names it serves), from the kit's
+    bought parts (``core.parts.Part`` with ``printed`` False): each part's own ``stock`` lines; a
+    part with none is one of its ``item`` (or its role) with the sizes its info gives in mm."""
     items: dict[tuple[str, str], list] = {}
 
     def add(item: str, qty: int, size: str, name: str) -> None:
@@ -86,24 +87,14 @@ def stock_items(purchased: list[dict]) -> list[tuple[str, int, str, list[str]]]:
         row[0] += qty
         row[1].append(name)
 
-    for b in purchased:
-        role, name = b.get("role", ""), str(b.get("name", ""))
-        if role == "belt":
-            add(f"{b.get('profile', '')} closed timing belt", 1, f"{b.get('teeth')} teeth, {_g(b.get('length_mm', 0))} mm "
-                f"pitch length, {_g(b.get('width_mm', 0))} mm wide", name)
-        elif role == "pin":
-            add(f"{b.get('material', 'steel')} pin", 1, f"Ø{_g(b['diameter_mm'])} × {float(b['length_mm']):.1f} mm", name)
-        elif isinstance(b.get("slugs"), dict):
-            sl = b["slugs"]
-            add(f"{sl.get('kind', 'slug')} slug", int(sl.get("count", 0)), f"Ø{_g(sl['diameter_mm'])} × "
-                f"{_g(sl['length_mm'])} mm", b.get("part", name))
-            if isinstance(b.get("binder"), dict):
-                add(str(b["binder"].get("name", "binder")), 1, f"{float(b['binder'].get('volume_cm3', 0)):.2f} cm³",
-                    b.get("part", name))
-        else:
-            size = ", ".join(f"{k[:-3]} {_g(v)} mm" for k, v in b.items() if k.endswith("_mm") and
+    for p in bought:
+        for line in p.stock:
+            add(line.item, line.quantity, line.size, line.serves or p.name)
+        if not p.stock:
+            info = dict(p.info)
+            size = ", ".join(f"{k[:-3]} {_g(v)} mm" for k, v in info.items() if k.endswith("_mm") and
                              isinstance(v, (int, float)))
-            add(str(b.get("item") or role or name), 1, size, name)  # "item": what to ask a shop for
+            add(str(info.get("item") or p.role or p.name), 1, size, p.name)  # "item": what to ask a shop for
     return [(item, q, size, used) for (item, size), (q, used) in items.items()]
 
 
@@ -112,9 +103,9 @@ def printed_rows(man: dict) -> list[tuple[str, int, float, float]]:
     return [(p["name"], int(p["count"]), float(p["mass_g"]), float(p["mass_g"]) * int(p["count"])) for p in man["parts"]]
 
 
-def shopping_list(man: dict) -> str:
-    """What `build` prints as the bill: printed parts (count, filament grams each and in total, solid)
-    and bought parts (quantity, stock size)."""
+def shopping_list(man: dict, bought=()) -> str:
+    """What `build` prints as the bill: printed parts (count, filament grams each and in total, solid,
+    from the manifest) and the ``bought`` parts (quantity, stock size)."""
     rows = printed_rows(man)
     material = man.get("design", {}).get("material", "")
     total = sum(r[3] for r in rows)
@@ -122,7 +113,7 @@ def shopping_list(man: dict) -> str:
              "filament in total (solid; infill below 100 % prints less)",
              f"  {'part':<14}{'count':>6}{'g each':>9}{'g total':>9}"]
     lines += [f"  {n:<14}{c:>6}{e:>9.1f}{t:>9.1f}" for n, c, e, t in rows]
-    bought = stock_items(man.get("purchased", []))
+    bought = stock_items(bought)
     if bought:
         lines.append("buy:")
         lines += [f"  {q:>4} × {item:<34} {size}" for item, q, size, _ in bought]

@@ -164,7 +164,7 @@ def built_with() -> dict[str, str]:
 def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] = (), motion: Motion | None = None,
                  colours: dict[str, str] | None = None) -> bytes:
     """The GLB of every part (``export.gltf``: metres, Y up, one mesh per distinct STL instanced by
-    its nodes, coloured by role), bought parts (belts) included; animated over ``motion`` when given."""
+    its nodes, coloured by role), bought parts included; animated over ``motion`` when given."""
     instances, solids = [], {}
     for p in bought:
         if id(p.solid) not in solids:

@@ -41,7 +41,7 @@ KIT_DERIVED = ("plates", "trace", "report", "tolerance")  # outputs that live in
 _LEGACY = {
     "kit": re.compile(r"^(.+\.stl|manifest\.json|assembly\.glb|design\.yaml|printer\.yaml)$"),
     "plates": re.compile(r"^(plate\d+\.3mf|plates\.png)$"),
-    "trace": re.compile(r"^(trace\.(png|svg|gif)|wrist\.(png|svg))$"),
+    "trace": re.compile(r"^trace\.(png|svg|gif)$"),
     "report": re.compile(r"^index\.html$"),
     "tolerance": re.compile(r"^(chunks\.jsonl|result\.json)$"),
     "sweep": re.compile(r"^(points\.(csv|jsonl)|index\.html)$"),

@@ -43,9 +43,9 @@ def kit_page(mech: Mechanism, spec, kit: Kit, result: Result, trace: Trace, file
     plates' pictures (one per plate), ``tolerance`` the saved result of `partgen tolerance` (or None), ``glb`` the
     kit's animated assembly, shown first in the interactive 3-D view (``export.viewer``), ``links``
     (name, href) the kit's files, linked under it."""
-    purchased = [{"name": p.name, "role": p.role, **dict(p.info)} for p in kit.parts if not p.printed]
+    purchased = [p for p in kit.parts if not p.printed]
     sections = mech.report_sections(spec, kit, result, trace, files)
-    own = {title for title, _ in sections}  # a mechanism's own bill (the Bennett's FDM masses) stands
+    own = {title for title, _ in sections}  # a mechanism's own bill (e.g. masses as sliced) stands
     sections[1:1] = [x for x in bill_sections(kit, mech.role_colours, purchased, printed_groups(kit),
                                               steps_of(mech, spec, kit)) if x[0] not in own]
     if tolerance is not None:

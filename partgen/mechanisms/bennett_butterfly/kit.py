@@ -27,6 +27,7 @@ from .params import BennettParams
 from ...geometry.bennett_link import LINK_PHASES, Cup, base_solid, link_solid, pin_solid
 from ...geometry.mass import printed_mass
 from ...geometry.parts import Part
+from ...core.parts import Stock
 from ...geometry.printing import best_orientation
 from ...geometry.solid import cylinder, float32_sound, mesh_arrays, print_arrays
 from .layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
@@ -388,7 +389,8 @@ def _with_bought(kit: BennettKit) -> BennettKit:
                            info=(("diameter_mm", 2 * p.pin_radius), ("length_mm", st.length), ("material", p.pin_kind),
                                  ("joint", j), ("mass_g", round(mass, 6)), ("counted_with", name),
                                  ("centre_mm", centre), ("axis", axis),
-                                 ("stack", ["base" if i == BASE else f"link{i:02d}" for i in st.members]))))
+                                 ("stack", ["base" if i == BASE else f"link{i:02d}" for i in st.members])),
+                           stock=(Stock(f"{p.pin_kind} pin", 1, f"Ø{2 * p.pin_radius:.4g} × {float(st.length):.1f} mm"),)))
     for i, f in kit.fills.items():
         cup = kit.cups[i]
         name = f"link{i:02d}"
@@ -400,7 +402,9 @@ def _with_bought(kit: BennettKit) -> BennettKit:
             ("binder", {"name": p.binder_name, "volume_cm3": round(f.binder_volume / 1000, 6),
                         "mass_g": round(f.binder_mass, 6)}),
             ("pocket", {"diameter_mm": 2 * f.bore_radius, "depth_mm": f.depth}),
-            ("mass_g", round(f.mass, 6)), ("centre_mm", centre), ("axis", axis))))
+            ("mass_g", round(f.mass, 6)), ("centre_mm", centre), ("axis", axis)),
+            stock=(Stock(f"{p.slug_kind} slug", int(f.count), f"Ø{f.diameter:.4g} × {f.length:.4g} mm", name),
+                   Stock(str(p.binder_name), 1, f"{round(f.binder_volume / 1000, 6):.2f} cm³", name))))
     return BennettKit(p, lay, kit.parts + tuple(bought), kit.bodies, kit.masses, kit.pins, kit.cups, kit.fills,
                       kit.delta, kit.solids, kit.printing, kit.base_mass, kit.figures)
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ...core.parts import Bore, Contact
+from ...core.parts import Bore, Contact, Stock
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z, poses_z
 from ...design.kinematics import clockings, gear_tracks, joint_positions_over, link_angles_over
@@ -198,7 +198,9 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
         band = P.belt_band(path, prof.pitch_line_offset + prof.groove_depth, prof.back_height, z0, z0 + prof.width)
         add(Part(f"belt{s.j}", "belt", band, printed=False,
                  info=(("profile", prof.name), ("teeth", s.belt_teeth), ("length_mm", s.belt_teeth * prof.pitch),
-                       ("width_mm", prof.width))))
+                       ("width_mm", prof.width)),
+                 stock=(Stock(f"{prof.name} closed timing belt", 1, f"{s.belt_teeth} teeth, "
+                              f"{s.belt_teeth * prof.pitch:.4g} mm pitch length, {prof.width:.4g} mm wide"),)))
 
     # link plates
     if params.pen_holder_height < PEN_FLOOR + 1.0:
