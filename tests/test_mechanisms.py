@@ -126,3 +126,19 @@ def test_a_misspelt_kind_is_one_error_on_kind(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and ": kind: unknown mechanism 'bennet_butterfly'" in err[0]
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("config", ["butterfly_liu2017", "gear_train_reducer", "gear_train_planetary", "gear_train_rack"])
+def test_kits_the_shared_checks_take_are_checked_kits(config):
+    """What the shared checks read of a kit is declared (``core.protocol.CheckedKit``): every kit a
+    mechanism hands them has it, with the settings, printer and face width its params must carry."""
+    from partgen import pipeline
+    from partgen.core.protocol import CheckedKit
+
+    kit = pipeline.make_kit(pipeline.load(Path(__file__).parent.parent / "configs" / f"{config}.yaml"))
+    assert isinstance(kit, CheckedKit)
+    for name in ("checks", "printer", "face_width"):
+        assert hasattr(kit.params, name), name
+    from partgen.core.parts import Contact
+    assert kit.contacts and all(isinstance(c, Contact) for c in kit.contacts)
+    assert kit.part(kit.parts[0].name) is kit.parts[0]

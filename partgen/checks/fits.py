@@ -15,7 +15,7 @@ import math
 import numpy as np
 import shapely
 
-from ..core.protocol import Kit
+from ..core.protocol import CheckedKit as Kit  # what the shared checks read of a kit
 from ..geometry.measure import intersection, place2d
 from ..core.findings import Finding
 from .motion import PartGeometry

@@ -13,7 +13,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Point, Polygon, box
 
-from ..core.protocol import Kit
+from ..core.protocol import CheckedKit as Kit  # what the shared checks read of a kit
 from ..design import involute, rules
 from ..design.gearing import centre_distance
 from ..design.rules import gear_rules

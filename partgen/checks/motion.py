@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 
-from ..core.protocol import Kit
+from ..core.protocol import CheckedKit as Kit  # what the shared checks read of a kit
 from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs
 from ..core.findings import Finding
 

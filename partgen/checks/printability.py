@@ -8,7 +8,7 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Point, Polygon
 
-from ..core.protocol import Kit
+from ..core.protocol import CheckedKit as Kit  # what the shared checks read of a kit
 from ..design import rules
 from ..design.rules import gear_rules
 from ..core.findings import Finding

@@ -10,10 +10,10 @@ from typing import Callable, Protocol, runtime_checkable
 import numpy as np
 
 from .findings import Result
-from .parts import Part
+from .parts import Contact, Part
 from .printer import PrinterLimits
 
-__all__ = ["Kit", "ParamsKit", "SpecKit", "Mechanism", "OptionalHooks", "OPTIONAL_HOOKS", "Motion", "Trace", "Section", "Step",
+__all__ = ["Kit", "CheckedKit", "ParamsKit", "SpecKit", "Mechanism", "OptionalHooks", "OPTIONAL_HOOKS", "Motion", "Trace", "Section", "Step",
            "TOLERANCE_HOOK", "tolerance_hook"]
 
 
@@ -40,6 +40,22 @@ class Kit(Protocol):
         """name -> (N, 4, 4) poses of every part at the N values ``ts`` of the motion parameter
         (``ParamsKit`` gives it from ``poses``; a kit may compute it at once)."""
         ...
+
+
+@runtime_checkable
+class CheckedKit(Kit, Protocol):
+    """A kit the shared checks take (``checks``: the motion sweep, meshing, fits, printability):
+    besides ``Kit``, its ``params`` with ``checks`` (``checks.settings.CheckSettings``: what the
+    checks hold it to), ``printer`` (``core.printer.PrinterLimits``) and ``face_width`` (mm, its
+    gears' face), the ``contacts`` its parts are meant to make (``core.parts.Contact``: fits and
+    meshes the checks measure instead of reporting as interference) and a part by its name."""
+
+    @property
+    def params(self) -> object: ...
+    @property
+    def contacts(self) -> tuple[Contact, ...]: ...
+
+    def part(self, name: str) -> Part: ...
 
 
 class ParamsKit:
