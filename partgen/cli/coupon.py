@@ -31,7 +31,7 @@ def run(args) -> int:
     print(f"calibration coupon for the {ref.printer.name}: {parts}; plate {s['plate_mm'][0]:.1f} × "
           f"{s['plate_mm'][1]:.1f} mm, all on an 80 × 60 mm patch, {s['mass_pla_g']:.1f} g printed solid in PLA")
     if not ref.printer.measured:
-        print(f"the profile's fits and accuracy are typical values, not measured on your machine: this coupon measures them")
+        print("the profile's fits and accuracy are typical values, not measured on your machine: this coupon measures them")
     print(f"wrote {dest}/: coupon.3mf, the STLs, instructions.html (what to try and write down), results.yaml "
           f"(fill it in, then: partgen calibrate --printer {args.printer} {dest}/results.yaml -o my_printer.yaml)")
     return 0

@@ -13,7 +13,7 @@ from typing import Annotated
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, model_validator
 
-__all__ = ["Strict", "Printer", "Material", "ToleranceTarget", "AUTO_PLAY_START_MM", "nested_models"]
+__all__ = ["Strict", "Printer", "Material", "ToleranceTarget", "AUTO_PLAY_START_MM", "nested_models", "DesignHeader"]
 
 MAX = 10_000.0  # the largest magnitude any number may have (10 m as a length): larger is a typo, not a design
 Pos = Annotated[float, Field(gt=0, le=MAX)]
@@ -157,6 +157,23 @@ class Material(Strict):
 
 
 AUTO_PLAY_START_MM = 0.05  # backlash_per_gear_mm: auto is built and checked at this value first (docs/tolerance.md)
+
+
+class DesignHeader(Strict):
+    """What every design file starts with, whatever its kind (each kind's design extends it)."""
+
+    kind: str
+    """The mechanism this file designs: its kind selects the other keys."""
+    name: Name
+    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
+    most 100 characters)."""
+    description: Text = ""
+    """Free text about the design for whoever reads the file (partgen does not use it)."""
+    printer: Annotated[str, Field(min_length=1, max_length=500)]
+    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
+    in the design's folder, relative to it (--printer overrides it)."""
+    material: Material
+    """The printing material: its name and density, for the masses."""
 
 
 class ToleranceTarget(Strict):

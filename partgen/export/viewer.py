@@ -254,7 +254,7 @@ def viewer_section(glb: bytes, kit: Kit, motion, result: Result, rows: dict[str,
             f'<div class="pg-status" id="pg-status">Loading the 3-D view …</div></div>'
             f"<p>The assembly moves over its {html.escape(data['label'])}, {span} ({how}); the same animation is in "
             "the kit's <code>assembly.glb</code>, which any glTF viewer plays. Parts are coloured by role.</p>"
-            + (f'<p class="pg-files">The kit\'s files: ' + " · ".join(
+            + ('<p class="pg-files">The kit\'s files: ' + " · ".join(
                 f'<a href="{html.escape(href)}">{html.escape(name)}</a>' for name, href in links) + "</p>"
                if links else "")
             + f'<script type="application/json" id="pg-viewer-data">{payload}</script>'

@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import (Density, Finite, Gap, Length, Material, Name, NonNeg, Ratio, Strict, Text)
+from ...config.schema import (DesignHeader, Density, Finite, Gap, Length, Material, NonNeg, Ratio, Strict)
 
 __all__ = ["BennettDesign"]
 
@@ -164,17 +164,9 @@ class BennettChecks(Strict):
         default={}, description="what-if: a link's mass times this, counterweights not re-sized (seeded faults)")
 
 
-class BennettDesign(Strict):
+class BennettDesign(DesignHeader):
     kind: Literal["bennett_butterfly"]
     """The mechanism this file designs: `bennett_butterfly` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     linkage: BennettLinkage
     """Bennett 1's lengths and twists, the four scales, the home pose and the workspace."""
     parts: BennettParts
@@ -189,5 +181,3 @@ class BennettDesign(Strict):
     """The base: a post on a flat foot holding the S stack."""
     checks: BennettChecks = BennettChecks()
     """What partgen check holds the kit to."""
-    material: Material
-    """The printing material: its name and density, for the masses."""

@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import Gap, Length, Material, Name, Strict, Text
+from ...config.schema import DesignHeader, Gap, Length, Strict
 
 __all__ = ["BevelDesign"]
 
@@ -72,17 +72,9 @@ class BevelChecks(Strict):
     """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
-class BevelDesign(Strict):
+class BevelDesign(DesignHeader):
     kind: Literal["bevel"]
     """The mechanism this file designs: `bevel` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     shaft_angle_deg: Annotated[float, Field(ge=30.0, le=150.0)] = 90.0
     """Angle between the two (intersecting) shafts, 30 to 150; 90 for a right-angle (mitre, with equal teeth) pair.
     Above 90 only while both pitch cones stay below 90° (cos Σ > −z_small/z_large: a crown gear at 90°, an internal
@@ -95,8 +87,6 @@ class BevelDesign(Strict):
     """The base, the hubs and the block holding gear 2's pin."""
     checks: BevelChecks = BevelChecks()
     """What partgen check holds the kit to."""
-    material: Material
-    """The printing material: its name and density, for the masses."""
 
     @model_validator(mode="after")
     def _face(self):

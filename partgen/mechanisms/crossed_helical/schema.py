@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import Gap, Length, Material, Name, Strict, Text
+from ...config.schema import DesignHeader, Gap, Length, Strict
 
 __all__ = ["CrossedHelicalDesign"]
 
@@ -77,17 +77,9 @@ class CrossedChecks(Strict):
     """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
-class CrossedHelicalDesign(Strict):
+class CrossedHelicalDesign(DesignHeader):
     kind: Literal["crossed_helical"]
     """The mechanism this file designs: `crossed_helical` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     shaft_angle_deg: Annotated[float, Field(ge=45.0, le=90.0)] = 90.0
     """Angle between the two (skew) shafts; 90 for a worm drive or a right-angle pair."""
     gears: CrossedGears
@@ -98,8 +90,6 @@ class CrossedHelicalDesign(Strict):
     """The base and the two blocks holding gear 2's pin."""
     checks: CrossedChecks = CrossedChecks()
     """What partgen check holds the kit to."""
-    material: Material
-    """The printing material: its name and density, for the masses."""
 
     @model_validator(mode="after")
     def _angles(self):

@@ -6,9 +6,9 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import ToleranceTarget
-from ...config.schema import (MAX, Coeff, Finite, Gap, Length, Material, Name, NonNeg, Pos, Ratio, Strict,
-                              Teeth, Text)
+from ...config.schema import DesignHeader, ToleranceTarget
+from ...config.schema import (MAX, Coeff, Finite, Gap, Length, NonNeg, Pos, Ratio, Strict,
+                              Teeth)
 
 __all__ = ["Design"]
 
@@ -322,17 +322,9 @@ class Checks(Strict):
 
 
 
-class Design(Strict):
+class Design(DesignHeader):
     kind: Literal["gear_chain"]
     """The mechanism this file designs: `gear_chain` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     curve: Curve | None = None
     """The curve the chain draws: Fourier coefficients or a drawing (give curve or links)."""
     links: Annotated[list[LinkRow], Field(max_length=128)] | None = None
@@ -362,8 +354,6 @@ class Design(Strict):
     """The jam probability that gears.backlash_per_gear_mm: auto chooses the play for."""
     belts: Belts | None = None
     """Timing belts instead of idler gears (needs teeth: auto); none: idler gears."""
-    material: Material
-    """The printing material: its name and density, for the masses."""
 
     @model_validator(mode="after")
     def _one_source(self):

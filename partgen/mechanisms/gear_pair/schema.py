@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field
 
-from ...config.schema import ToleranceTarget, Gap, Length, Material, Name, Strict, Teeth, Text
+from ...config.schema import DesignHeader, ToleranceTarget, Gap, Length, Strict, Teeth
 
 __all__ = ["GearPairDesign"]
 
@@ -56,17 +56,9 @@ class PairChecks(Strict):
     """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
-class GearPairDesign(Strict):
+class GearPairDesign(DesignHeader):
     kind: Literal["gear_pair"]
     """The mechanism this file designs: `gear_pair` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     gears: PairGears
     """The two spur gears: tooth system, teeth, face width and play."""
     axles: Axles = Axles()
@@ -77,5 +69,3 @@ class GearPairDesign(Strict):
     """What partgen check holds the kit to."""
     tolerance: ToleranceTarget = ToleranceTarget()
     """The jam probability that `backlash_per_gear_mm: auto` chooses the play for."""
-    material: Material
-    """The printing material: its name and density, for the masses."""

@@ -7,7 +7,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import Gap, Length, Material, Name, Ratio, Strict, Teeth, Text
+from ...config.schema import DesignHeader, Gap, Length, Ratio, Strict, Teeth
 
 __all__ = ["GearTrainDesign"]
 
@@ -193,17 +193,9 @@ class TrainChecks(Strict):
     """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
-class GearTrainDesign(Strict):
+class GearTrainDesign(DesignHeader):
     kind: Literal["gear_train"]
     """The mechanism this file designs: `gear_train` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     gears: TrainGears
     """The tooth system every gear shares: module, pressure angle, face width, play, shifts, helix."""
     train: Train | None = None
@@ -218,8 +210,6 @@ class GearTrainDesign(Strict):
     """The frame: two plates on four spacers, and the gaps between layers."""
     checks: TrainChecks = TrainChecks()
     """What partgen check holds the kit to."""
-    material: Material
-    """The printing material: its name and density, for the masses."""
 
     @model_validator(mode="after")
     def _train_or_planetary(self):

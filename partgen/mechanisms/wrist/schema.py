@@ -6,7 +6,7 @@ from typing import Annotated, Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from ...config.schema import (Finite, Gap, Length, Material, Name, Strict, Text)
+from ...config.schema import (DesignHeader, Finite, Gap, Length, Strict)
 
 __all__ = ["WristDesign"]
 
@@ -95,18 +95,8 @@ class Wrist(Strict):
     """Also build an ABENICS-style cross gear on the same sphere (needs nominal_ratio 1); none: not built."""
 
 
-class WristDesign(Strict):
+class WristDesign(DesignHeader):
     kind: Literal["wrist"]
     """The mechanism this file designs: `wrist` selects these keys."""
-    name: Name
-    """The design's name and its default output folder `out/<name>/`: a plain file name (letters, digits, _ . -; at
-    most 100 characters)."""
-    description: Text = ""
-    """Free text about the design for whoever reads the file (partgen does not use it)."""
-    printer: Annotated[str, Field(min_length=1, max_length=500)]
-    """The printer the kit is made for and checked against: a shipped profile's name (prusa_mk4) or a .yaml profile
-    in the design's folder, relative to it (--printer overrides it)."""
     wrist: Wrist
     """The wrist gear pair: pitch surfaces, rings of teeth, clearance, workspace and shafts."""
-    material: Material
-    """The printing material: its name and density, for the masses."""
