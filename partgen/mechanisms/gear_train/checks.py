@@ -13,14 +13,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...checks.bed import bed_findings
-from ...checks.bores import bore_findings
-from ...checks.fits import check_fits
-from ...checks.meshing import check_meshes
-from ...checks.motion import prepare, sweep
-from ...checks.printability import check_printability, printed_extents
+from ...checks.motion import prepare
+from ...checks.sequence import run_shared
 from ...core.findings import Finding, Result
 from ...core.parts import Contact, Part
+from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z
 from ...design import rules
 from ...design.rules import gear_rules
@@ -33,7 +30,7 @@ __all__ = ["MeshView", "check_train", "sample_thetas", "exact_mesh_overlap"]
 
 
 @dataclass(frozen=True)
-class MeshView:
+class MeshView(ParamsKit):
     """The train's gears one by one (a compound part's two gears apart) as checks.meshing reads a kit:
     a part per gear, posed at its part's pose raised to its layer, and a mesh contact per stage."""
 
@@ -106,25 +103,11 @@ def check_train(kit: TrainKit, samples: int | None = None, progress=None) -> Res
     # about a tenth of it outside the sampled sections): an envelope; what it flags is measured
     # exactly in 3-D, and the meshes themselves below
     geo = prepare(kit, {f"gears{g.shaft}" for g in s.gears if g.hand}, s.system.chord_tolerance)
-    t1 = time.perf_counter()
-    found, motion = sweep(kit, geo, thetas, progress, label="input angle")
+    # meshing teeth come within their backlash by design: their clearance is the mesh check's;
+    # the bores: every shaft's way through the gears and the plates open
     meshing_parts = {frozenset((f"gears{s.gear(m.driver).shaft}", f"gears{s.gear(m.driven).shaft}")) for m in s.meshes}
-    # meshing teeth come within their backlash by design: their clearance is the mesh check's
-    dropped = [f for f in found if f.check == "clearance" and frozenset(f.parts) in meshing_parts]
-    res.add(*[f for f in found if f not in dropped])
-    t2 = time.perf_counter()
-    found, meshes = check_meshes(view, thetas, "input angle")
-    res.add(*found)
-    t3 = time.perf_counter()
-    found, fits = check_fits(kit, geo, thetas)
-    res.add(*found)
-    found, printing = check_printability(kit, geo, printed_extents(kit))
-    res.add(*found)
-    found, on_bed = bed_findings(kit.parts, s.printer)
-    res.add(*found)
-    found, bores = bore_findings(kit.parts)  # every shaft's way through the gears and the plates open
-    res.add(*found)
-    on_bed = {**on_bed, "bores": bores}
+    t1 = time.perf_counter()
+    got = run_shared(res, kit, thetas, "input angle", progress, geo=geo, mesh_view=view, mesh_owned=meshing_parts)
     t4 = time.perf_counter()
     few = thetas[:: max(1, len(thetas) // 8)][:8]
     turned = turn_train(kit, few, tol=1e-6)
@@ -153,10 +136,10 @@ def check_train(kit: TrainKit, samples: int | None = None, progress=None) -> Res
     t5 = time.perf_counter()
     res.figures.update(
         parts=len(kit.parts), samples=len(thetas), output_turns=1, input_turns=round(s.output_turn / (2 * math.pi), 6),
-        motion=motion, meshes=meshes, clearance_left_to_mesh_check=len(dropped),
-        fits={"count": len(fits), "rows": fits}, printability={**printing, **on_bed},
+        motion=got.motion, meshes=got.meshes, clearance_left_to_mesh_check=got.dropped,
+        fits={"count": len(got.fits), "rows": got.fits}, printability=got.printing,
         output_backlash_arcmin={"min": round(float(np.degrees(lash.min()) * 60), 3),
                                 "max": round(float(np.degrees(lash.max()) * 60), 3), "angles": len(few)},
-        seconds={"prepare": round(t1 - t0, 3), "motion": round(t2 - t1, 3), "meshes": round(t3 - t2, 3),
-                 "fits_and_printability": round(t4 - t3, 3), "printed_backlash": round(t5 - t4, 3)})
+        seconds={"prepare": round(t1 - t0, 3), "motion": got.seconds["motion"], "meshes": got.seconds["meshes"],
+                 "fits_and_printability": got.seconds["fits_and_printability"], "printed_backlash": round(t5 - t4, 3)})
     return res

@@ -26,11 +26,7 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
-from ...checks.bed import bed_findings
-from ...checks.fits import check_fits
-from ...checks.meshing import check_meshes
-from ...checks.motion import prepare, sweep
-from ...checks.printability import check_printability, printed_extents
+from ...checks.sequence import run_shared
 from ...config.loader import LoadedDesign, printer_limits
 from ...core.findings import Finding, Result
 from ...core.parts import Contact, Part
@@ -419,7 +415,7 @@ def build_planetary(s: PlanetarySpec, progress=None) -> PlanetaryKit:
 
 
 @dataclass(frozen=True)
-class _SunPlanetView:
+class _SunPlanetView(ParamsKit):
     """The sun and the planets as checks.meshing reads a kit (the ring mesh is checked here)."""
 
     kit: PlanetaryKit
@@ -616,20 +612,10 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
     for name, gear in (("sun", s.sun), ("planet0", s.planet)):
         if gear.undercut:
             res.add(Finding("design", "info", f"{name} ({gear.teeth} teeth) is undercut", (name,)))
-    geo = prepare(kit)
-    found, motion = sweep(kit, geo, thetas, progress, prune=True, label="input angle")
     meshing = {frozenset(("sun", f"planet{i}")) for i in range(N)} | {frozenset((f"planet{i}", "frame_bottom"))
                                                                      for i in range(N)}
-    dropped = [x for x in found if x.check == "clearance" and frozenset(x.parts) in meshing]
-    res.add(*[x for x in found if x not in dropped])
-    found, meshes = check_meshes(_SunPlanetView(kit), thetas, "input angle")
-    res.add(*found)
-    found, fits = check_fits(kit, geo, thetas)
-    res.add(*found)
-    found, printing = check_printability(kit, geo, printed_extents(kit))
-    res.add(*found)
-    found, on_bed = bed_findings(kit.parts, s.printer)
-    res.add(*found)
+    got = run_shared(res, kit, thetas, "input angle", progress, mesh_view=_SunPlanetView(kit), mesh_owned=meshing,
+                     prune=True, bores=False)
     # every planet against sun and ring on the printed sections (tip and trochoidal interference): both
     # meshes of a planet advance one planet tooth while the sun turns 2π / (z_s (1 − 1/i)) about the
     # carrier, so 8 angles over that span see every phase of every mesh
@@ -645,9 +631,9 @@ def check_planetary(kit: PlanetaryKit, samples: int | None = None, progress=None
     if lash.min() <= 0:
         res.add(Finding("mesh", "fail", "the set jams: no backlash at the carrier", (), None, float(lash.min()), "rad",
                         rule="backlash"))
-    res.figures.update(parts=len(kit.parts), samples=n, input_turns=round(s.ratio, 6), motion=motion, meshes=meshes,
-                       internal_mesh=internal, clearance_left_to_mesh_check=len(dropped),
-                       fits={"count": len(fits), "rows": fits}, printability={**printing, **on_bed},
+    res.figures.update(parts=len(kit.parts), samples=n, input_turns=round(s.ratio, 6), motion=got.motion,
+                       meshes=got.meshes, internal_mesh=internal, clearance_left_to_mesh_check=got.dropped,
+                       fits={"count": len(got.fits), "rows": got.fits}, printability=got.printing,
                        output_backlash_arcmin={"min": round(float(np.degrees(lash.min()) * 60), 3),
                                                "max": round(float(np.degrees(lash.max()) * 60), 3), "angles": len(few)},
                        max_printed_overlap_mm2=float(worst))

@@ -22,10 +22,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon, box
 
-from ...checks.bed import bed_findings
-from ...checks.fits import check_fits
-from ...checks.motion import prepare, sweep
-from ...checks.printability import check_printability
+from ...checks.sequence import run_shared
 from ...config.loader import LoadedDesign, printer_limits
 from ...core.findings import Finding, Result
 from ...core.parts import Contact, Part
@@ -320,17 +317,9 @@ def check_rack(kit: RackKit, samples: int | None = None, progress=None) -> Resul
                         None, tip_w, "mm", rule="tip-width"))
     if p.undercut:
         res.add(Finding("design", "info", f"the pinion ({p.teeth} teeth) is undercut", ("pinion",)))
-    geo = prepare(kit)
-    found, motion = sweep(kit, geo, thetas, progress, label="input angle")
-    dropped = [x for x in found if x.check == "clearance" and frozenset(x.parts) == {"pinion", "rack"}]
-    res.add(*[x for x in found if x not in dropped])
-    found, fits = check_fits(kit, geo, thetas)
-    res.add(*found)
     ext = {q.name: (lambda v: v.max(axis=0) - v.min(axis=0))(mesh_arrays(q.solid)[0]) for q in kit.parts}
-    found, printing = check_printability(kit, geo, ext)
-    res.add(*found)
-    found, on_bed = bed_findings(kit.parts, s.printer)
-    res.add(*found)
+    got = run_shared(res, kit, thetas, "input angle", progress, mesh_owned={frozenset(("pinion", "rack"))},
+                     extents=ext, bores=False)
     turned = turn_rack(kit, thetas)
     lash = turned["coast"] - turned["drive"]
     if turned["overlap_mm2"].max() > 1e-6:
@@ -344,7 +333,7 @@ def check_rack(kit: RackKit, samples: int | None = None, progress=None) -> Resul
                              "designed": 2 * s.system.backlash_per_gear},
                 max_overlap_mm2=float(turned["overlap_mm2"].max()))
     res.figures.update(parts=len(kit.parts), samples=n, input_turns=round((thetas[-1] - thetas[0]) / (2 * math.pi), 4),
-                       motion=motion, rack_mesh=rows, clearance_left_to_mesh_check=len(dropped),
-                       fits={"count": len(fits), "rows": fits}, printability={**printing, **on_bed},
+                       motion=got.motion, rack_mesh=rows, clearance_left_to_mesh_check=got.dropped,
+                       fits={"count": len(got.fits), "rows": got.fits}, printability=got.printing,
                        output_backlash_mm={"min": float(lash.min()), "max": float(lash.max())})
     return res
