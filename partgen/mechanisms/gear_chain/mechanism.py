@@ -356,8 +356,10 @@ class GearChain:
             lines.append(f"{label:<28}{d['max_deviation_mm']:>16.3f}{d['rms_mm']:>10.3f}{d['hausdorff_mm']:>14.3f}")
         band = stats.get("pen_error_band_mm")
         if band:
-            lines.append(f"play at the pen (backlash and fits taken up): worst case {band['worst_case_max']:.2f} mm, "
-                         f"95 % of prints within {band['p95_max']:.2f} mm ({band['prints']} prints)")
+            lines.append(f"play at the pen (backlash and fits taken up), across the path: worst case "
+                         f"{band['path_worst_case_max']:.2f} mm, 95 % of prints within {band['path_p95_max']:.2f} mm; "
+                         f"from the nominal point at the same crank angle (a lag along the path too): "
+                         f"{band['worst_case_max']:.2f} / {band['p95_max']:.2f} mm ({band['prints']} prints)")
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)

@@ -41,8 +41,9 @@ def band_axes(ax, pen: np.ndarray, theta: np.ndarray, band) -> None:
     p95 = np.interp(theta % (2 * np.pi), band.theta, band.p95_normal, period=2 * np.pi)
     t = np.gradient(pen)
     nrm = 1j * t / np.maximum(np.abs(t), 1e-12)
-    for w, colour, alpha, label in ((at, "#f58518", 0.25, f"worst case from play (≤ {band.worst.max():.2f} mm)"),
-                                    (p95, "#e45756", 0.35, f"95 % of prints (≤ {band.p95_max:.2f} mm)")):
+    for w, colour, alpha, label in ((at, "#f58518", 0.25, f"worst case from play (≤ {band.worst_normal.max():.2f} mm "
+                                                          "across the path)"),
+                                    (p95, "#e45756", 0.35, f"95 % of prints (≤ {band.p95_path_max:.2f} mm across)")):
         hi, lo = pen + nrm * w, pen - nrm * w
         ax.fill(np.concatenate([hi.real, lo.real[::-1]]), np.concatenate([hi.imag, lo.imag[::-1]]), color=colour,
                 alpha=alpha, lw=0, label=label)
