@@ -248,8 +248,15 @@ EXACT_PER_TASK = 5  # prints a task makes (a print is ~20-60 ms: the scheduler's
 
 
 def _exact_batch(job: dict, seed: int, first: int, n: int) -> list[dict]:
-    """Prints first .. first + n - 1 (each one's deviations depend on the seed and its index only)."""
-    return [job["fn"](job["shared"], seed, i) for i in range(first, first + n)]
+    """Prints first .. first + n - 1 (each one's deviations depend on the seed and its index only),
+    each with the CPU time its thread spent on it (``cpu_seconds``: beside its wall ``seconds``, what
+    a busy machine took from it)."""
+    out = []
+    for i in range(first, first + n):
+        c0 = time.thread_time()
+        row = job["fn"](job["shared"], seed, i)
+        out.append({**row, "cpu_seconds": time.thread_time() - c0})
+    return out
 
 
 def _registry():
@@ -288,7 +295,8 @@ def exact_study(client, loaded, kit, nominal, model, prints: int, seed: int, pro
     lo, hi = wilson(jams, prints)
     return {"prints": prints, "jams": jams, "probability": jams / prints, "ci95": [lo, hi], "why": why,
             "workers": workers, "seconds": round(wall, 3),
-            "seconds_per_print": round(sum(r["seconds"] for r in rows) / prints, 4)}
+            "seconds_per_print": round(sum(r["seconds"] for r in rows) / prints, 4),
+            "cpu_seconds_per_print": round(sum(r.get("cpu_seconds", 0.0) for r in rows) / prints, 4)}
 
 
 def _json_safe(v):
