@@ -128,3 +128,17 @@ def test_auto_allocation_survives_ulp_perturbations():
             coeff = np.where(coeff != 0.0, np.nextafter(coeff, direction), 0.0)
         moved = MarginModel(model.features, model.margins, coeff, model.sigma, nominal, model.accuracy_mm)
         assert least_allocation(moved, _knobs(moved), 0.01)["values"] == base["values"], n
+
+
+def test_a_gear_train_chooses_its_shafts_clearance():
+    """The reducer with its shafts' running clearance and backlash auto: the pair meets the target on
+    its printer, and the kit built with it (its own quick study) does too."""
+    sets = ["shafts.running_clearance_diametral_mm=auto", "gears.backlash_per_gear_mm=auto"]
+    loaded = pipeline.load("configs/gear_train_reducer.yaml", over=pipeline.overrides(sets))
+    a = loaded.auto
+    c, b = a["values"]["shafts.running_clearance_diametral_mm"], a["values"][BL]
+    assert a["reached"] and a["probability"] <= 0.01 and a["joints"] >= 4 and a["meshes"] >= 2
+    assert loaded.raw.design.shafts.running_clearance_diametral_mm == c and loaded.raw.design.gears.backlash_per_gear_mm == b
+    over = pipeline.overrides([f"shafts.running_clearance_diametral_mm={c}", f"{BL}={b}"])
+    jam = pipeline.check("configs/gear_train_reducer.yaml", 8, write_plates=False, over=over).result.figures["jam"]
+    assert jam["probability"] <= 0.01 + 0.002 and jam["target"] == 0.01
