@@ -25,6 +25,7 @@ from .design.tolerance import ChunkTally, MarginModel, add_tallies, chunk_sizes,
 from .errors import ConfigError, OptionError
 from .export.biases import biased_model
 from .export.outputs import open_incremental
+from .export.studies import play_cost
 from .export.prints import printed_groups, stale_files
 
 __all__ = ["CHUNK", "default_chunk", "ToleranceRun", "tolerance", "sample", "nominal_model", "Vary", "parse_vary", "sweep_points", "sweep_point", "sweep"]
@@ -33,6 +34,7 @@ CHUNK = 5000  # samples per task, at least: ~30 ms of numpy, ~10x the ~3 ms of C
 TASKS = 16  # a study of many samples is cut into about this many tasks (at most MAX_CHUNK samples each)
 MAX_CHUNK = 100_000
 MAX_POINTS = 100_000  # design points of one sweep
+
 TASK_MAX_BYTES = 2 << 30  # a task's arrays (run_chunk's draws, margins and their temporaries), at most
 TASK_BYTES_PER_TERM = 12  # bytes a sample holds per feature and per margin at run_chunk's peak (measured: 11.3)
 
@@ -246,8 +248,15 @@ EXACT_PER_TASK = 5  # prints a task makes (a print is ~20-60 ms: the scheduler's
 
 
 def _exact_batch(job: dict, seed: int, first: int, n: int) -> list[dict]:
-    """Prints first .. first + n - 1 (each one's deviations depend on the seed and its index only)."""
-    return [job["fn"](job["shared"], seed, i) for i in range(first, first + n)]
+    """Prints first .. first + n - 1 (each one's deviations depend on the seed and its index only),
+    each with the CPU time its thread spent on it (``cpu_seconds``: beside its wall ``seconds``, what
+    a busy machine took from it)."""
+    out = []
+    for i in range(first, first + n):
+        c0 = time.thread_time()
+        row = job["fn"](job["shared"], seed, i)
+        out.append({**row, "cpu_seconds": time.thread_time() - c0})
+    return out
 
 
 def _registry():
@@ -286,7 +295,8 @@ def exact_study(client, loaded, kit, nominal, model, prints: int, seed: int, pro
     lo, hi = wilson(jams, prints)
     return {"prints": prints, "jams": jams, "probability": jams / prints, "ci95": [lo, hi], "why": why,
             "workers": workers, "seconds": round(wall, 3),
-            "seconds_per_print": round(sum(r["seconds"] for r in rows) / prints, 4)}
+            "seconds_per_print": round(sum(r["seconds"] for r in rows) / prints, 4),
+            "cpu_seconds_per_print": round(sum(r.get("cpu_seconds", 0.0) for r in rows) / prints, 4)}
 
 
 def _json_safe(v):
@@ -407,6 +417,9 @@ def sweep_point(shared: dict, index: int, values: dict) -> dict:
         s = summarise(model, total)
         row.update(jam_probability=s["overall"]["probability"], jam_ci95_low=s["overall"]["ci95"][0],
                    jam_ci95_high=s["overall"]["ci95"][1])
+        # what the play costs: the trace's pen band or lost motion (export.studies.play_cost)
+        trace = loaded.mechanism.trace(loaded.spec, kit, None, None, False)
+        row.update(play_cost(trace.stats))
     row["seconds"] = round(time.perf_counter() - t0, 3)
     return row
 
@@ -419,7 +432,7 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     input writes nothing. Rows are appended to ``dest``/points.jsonl as they arrive; at the end
     points.csv and index.html are written."""
     from .config.overrides import Overrides
-    from .export.studies import sweep_csv, sweep_page
+    from .export.studies import sweep_csv, sweep_page, tradeoff_csv, tradeoff_png
     from .mechanisms import REGISTRY, load_design
 
     if not varies:
@@ -455,7 +468,7 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     keys = [v.key for v in vs]
     t0 = time.perf_counter()
     with C.cluster(workers, scheduler, processes) as client:
-        out = open_incremental(claim, ["points.jsonl", "points.csv", "index.html"])
+        out = open_incremental(claim, ["points.jsonl", "points.csv", "index.html", "tradeoff.csv", "tradeoff.png"])
         rows: dict[int, dict] = {}
         counter = C.Counter("points", len(points), progress)
         with open(out / "points.jsonl", "w", encoding="utf-8") as sink:
@@ -471,7 +484,12 @@ def sweep(config, varies: list[str], dest, random: int | None = None, tolerance_
     sub = (f"{raw.path.name}: {len(points)} points, " + ", ".join(v.text for v in vs)
            + (f"; {random} random points, seed {seed}" if random else "")
            + (f"; P(jam) from {tolerance_samples:,} simulated prints each" if tolerance_samples else ""))
-    _write_atomic(out / "index.html", sweep_page(ordered, keys, f"partgen sweep: {raw.design.name}", sub))
+    target = getattr(getattr(raw.design, "tolerance", None), "max_jam_probability", None)
+    _write_atomic(out / "index.html", sweep_page(ordered, keys, f"partgen sweep: {raw.design.name}", sub, target))
+    trade = tradeoff_png(ordered, keys, target)
+    if trade is not None:
+        (out / "tradeoff.png").write_bytes(trade)
+        _write_atomic(out / "tradeoff.csv", tradeoff_csv(ordered, keys))
     return {"design": raw.design.name, "points": len(points), "keys": keys, "dest": str(out), "workers": nworkers,
             "seconds": round(time.perf_counter() - t0, 3),
             "pass": sum(r["status"] == "pass" for r in ordered), "fail": sum(r["status"] == "fail" for r in ordered),

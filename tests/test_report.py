@@ -73,8 +73,8 @@ def test_page_renders_in_headless_chromium_with_every_image(page, tmp_path):
     m = re.search(r"<title>IMAGES:(\d+):(\d+):H2:(\d+)</title>", dom)
     assert m, dom[:500]
     total, loaded, headings = map(int, m.groups())
-    # 3-d view, design, bill of parts, filament, assembly, stacking, trace, check, build plates
-    assert total >= 40 and loaded == total and headings == 9
+    # 3-d view, design, bill of parts, filament, assembly, stacking, trace, what play costs, check, build plates
+    assert total >= 40 and loaded == total and headings == 10
     shot = tmp_path / "shot.png"
     subprocess.run(cmd[:-2] + ["--window-size=1280,2000", f"--screenshot={shot}", probe.as_uri()],
                    capture_output=True, timeout=120)
@@ -102,3 +102,23 @@ def test_3d_view_of_the_default_chain_works_in_headless_chromium(page):
     text = page.read_text()
     m = re.search(r"tightest clearance ([0-9.]+) mm between (\S+) and (\S+) at crank angle ([0-9.]+)°", text)
     assert m and got["tight"] == pytest.approx(math.radians(float(m.group(4))), abs=0.02)
+
+
+def test_page_shows_what_play_costs(page, kit_of):
+    """The pen's error band (docs/tolerance.md, What play costs): across the path and from the nominal
+    point, worst case and 95 % of prints, the figure over the crank turn and each link's free angle —
+    the figures trace computes for this kit."""
+    import numpy as np
+
+    from partgen.mechanisms.gear_chain.mechanism import pen_error_band
+
+    text = page.read_text()
+    assert ">What play costs</h2>" in text
+    section = text.split(">What play costs</h2>")[1].split("<h2")[0]
+    assert "across the path" in section and "from the nominal point" in section and section.count("<img") == 1
+    spec = kit_of("butterfly").loaded.spec
+    band = pen_error_band(spec, 2 * np.pi * np.arange(3600) / 3600).to_dict()
+    for key in ("path_worst_case_max", "path_p95_max", "worst_case_max", "p95_max"):
+        assert f">{band[key]:.2f}</td>" in section, key
+    assert band["path_worst_case_max"] < band["worst_case_max"]
+    assert section.count("<tr>") >= 2 + len(band["link_free_angle_arcmin"])

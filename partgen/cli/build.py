@@ -35,16 +35,31 @@ class Progress:
 
 
 def auto_text(a: dict) -> str:
-    """What ``auto`` play chose, and the P(jam) it reaches (mechanisms.autoplay)."""
+    """What ``auto`` play chose (each key's value: the allocation between the meshes' backlash and the
+    joints' running clearance), the P(jam) it reaches, and where one more step would buy most
+    (mechanisms.autoplay, design.allocate)."""
     p, (lo, hi) = a["probability"], a["ci95"]
-    line = (f"auto play: {a['key']} = {a['backlash_per_gear_mm']:g} mm (each of {a['meshes']} meshes) — P(jam) "
-            f"{100 * p:.2f} % (95 % CI {100 * lo:.2f}–{100 * hi:.2f} %) on {a['printer']} at ±{a['accuracy_mm']:g} mm, "
-            f"target {100 * a['target']:g} %, linear study of {a['samples']:,} prints, gears seated by their meshes")
+    counts = {"backlash per gear": f"each gear of {a['meshes']} mesh{'es' * (a['meshes'] != 1)}",
+              "running clearance, diametral": f"each of {a['joints']} running fits"}
+    parts = [f"{k} = {v:g} mm ({counts.get(a['labels'][k], a['labels'][k])})" for k, v in a["values"].items()]
+    line = (f"auto play: {'; '.join(parts)} — P(jam) {100 * p:.2f} % (95 % CI {100 * lo:.2f}–{100 * hi:.2f} %) on "
+            f"{a['printer']} at ±{a['accuracy_mm']:g} mm, target {100 * a['target']:g} %, linear study of "
+            f"{a['samples']:,} prints, {a.get('credits') or 'gears seated by their meshes'}")
+    if len(a["values"]) > 1:
+        line += (f"\n  allocation: the least total play ({a['cost_mm']:g} mm over every mesh's backlash and every "
+                 f"fit's radial gap) among {len(a['frontier'])} pairs that meet the target")
+    if a.get("buys"):
+        line += "\n  one more step would save: " + ", ".join(
+            f"{k} {n} of {a['samples']:,} prints" for k, n in a["buys"].items())
+    left = [f"{u['unit']} ({u['group']}) {u['jams']}" for u in a.get("units", [])[:3]]
+    if left:
+        line += "\n  jams left at: " + ", ".join(left)
     if not a["reached"]:
         why = a.get("limited_by")
-        line += ("\n  warning: the target is not reached" + (f": it needs {why['needed_mm']:g} mm, and more than "
-                 f"{a['backlash_per_gear_mm']:g} mm does not build ({why['problem']})" if why else
-                 ": not even at the most play auto tries"))
+        line += "\n  warning: the target is not reached" + (": " + "; ".join(
+            f"{k} needs {w['needed_mm']:g} mm, and more than {a['values'][k]:g} mm does not build ({w['problem']})"
+            for k, w in why.items()) if why else ": not even at the most play auto tries (margins no play key "
+            "moves jam more often)")
     return line
 
 

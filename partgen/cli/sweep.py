@@ -38,18 +38,26 @@ def run(args) -> int:
     if args.json:
         print_json({"ok": True, **r})
         return 0
+    from ..export.studies import tradeoff_rows
+
     keys = r["keys"]
+    trade = tradeoff_rows(r["rows"])
+    cost, head = (trade[0], {"pen_error_p95_mm": "pen p95 mm", "lost_motion_arcmin": "lost '"}[trade[0]]) if trade \
+        else (None, "")
     lines = [f"{r['design']}: {r['points']} points ({', '.join(keys)}): {r['pass']} pass, {r['fail']} fail, "
              f"{r['refused']} refused; {r['workers']} worker(s), {r['seconds']:.1f} s",
-             "  ".join(f"{k:>18}" for k in keys) + f"{'status':>9}{'mass g':>9}{'part mm':>9}{'clear mm':>9}{'P(jam)':>9}"]
+             "  ".join(f"{k:>18}" for k in keys) + f"{'status':>9}{'mass g':>9}{'part mm':>9}{'clear mm':>9}{'P(jam)':>9}"
+             + (f"{head:>12}" if cost else "")]
     for row in r["rows"][:40]:
         jp = row.get("jam_probability")
         lines.append("  ".join(f"{row['values'][k]:>18}" for k in keys) + f"{row['status']:>9}"
                      + "".join(f"{'' if row.get(c) is None else format(row[c], '.2f'):>9}"
                                for c in ("mass_g", "size_mm", "least_clearance_mm"))
-                     + f"{'' if jp is None else format(100 * jp, '.1f') + ' %':>9}")
+                     + f"{'' if jp is None else format(100 * jp, '.1f') + ' %':>9}"
+                     + (f"{'' if row.get(cost) is None else format(row[cost], '.2f'):>12}" if cost else ""))
     if len(r["rows"]) > 40:
         lines.append(f"  … {len(r['rows']) - 40} more in points.csv")
-    lines.append(f"wrote {r['dest']}/points.csv, index.html")
+    lines.append(f"wrote {r['dest']}/points.csv, index.html" + (", tradeoff.csv, tradeoff.png (P(jam) against "
+                                                                 "what play costs)" if trade else ""))
     print("\n".join([lines[0], lines[-1]] if args.quiet else lines))
     return 0

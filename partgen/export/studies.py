@@ -12,10 +12,87 @@ from pathlib import Path
 
 from . import report as R
 
-__all__ = ["saved_tolerance", "tolerance_section", "tolerance_bars", "SWEEP_COLUMNS", "sweep_csv", "sweep_page"]
+__all__ = ["saved_tolerance", "tolerance_section", "tolerance_bars", "SWEEP_COLUMNS", "sweep_csv", "sweep_page",
+           "PLAY_COSTS", "play_cost", "tradeoff_rows", "tradeoff_csv", "tradeoff_png"]
 
 SWEEP_COLUMNS = ("point", "status", "ok", "failures", "first_failure", "mass_g", "size_mm", "parts",
-                 "least_clearance_mm", "jam_probability", "jam_ci95_low", "jam_ci95_high", "seconds")
+                 "least_clearance_mm", "jam_probability", "jam_ci95_low", "jam_ci95_high", "pen_error_mm",
+                 "pen_error_p95_mm", "lost_motion_arcmin", "seconds")
+# what play costs, by what a trace measures (design.play: the chain's pen across its path; a gear
+# train's lost motion at the output): (column, label), the first one a sweep's points have is plotted
+PLAY_COSTS = (("pen_error_p95_mm", "pen error across the path, 95 % of prints (mm)"),
+              ("lost_motion_arcmin", "lost motion at the output (arcmin)"))
+
+
+def play_cost(stats: dict) -> dict:
+    """What play costs in a trace's figures: the pen's error across the path (worst case and 95 % of
+    prints, mm) or the output's lost motion (arcmin); {} when the trace measures neither."""
+    out = {}
+    band = stats.get("pen_error_band_mm")
+    if isinstance(band, dict) and "path_p95_max" in band:
+        out.update(pen_error_mm=band["path_worst_case_max"], pen_error_p95_mm=band["path_p95_max"])
+    lm = stats.get("lost_motion_arcmin")
+    if isinstance(lm, dict) and "total" in lm:
+        out["lost_motion_arcmin"] = lm["total"]
+    return out
+
+
+def tradeoff_rows(rows: list[dict]) -> tuple[str, str, list[dict]] | None:
+    """(column, label, rows with P(jam) and that cost, least cost first) of a sweep's points, or None."""
+    for col, label in PLAY_COSTS:
+        got = [r for r in rows if r.get(col) is not None and r.get("jam_probability") is not None]
+        if got:
+            return col, label, sorted(got, key=lambda r: (r[col], r["point"]))
+    return None
+
+
+def tradeoff_csv(rows: list[dict], keys: list[str]) -> str:
+    """The trade-off's table: each point's values, what its play costs and its P(jam), least cost first."""
+    got = tradeoff_rows(rows)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    col = got[0] if got else "play_cost"
+    extra = ["pen_error_mm"] if col == "pen_error_p95_mm" else []
+    w.writerow(["point", *keys, col, *extra, "jam_probability", "jam_ci95_low", "jam_ci95_high", "status"])
+    for r in (got[2] if got else []):
+        w.writerow([r["point"], *[_value(r["values"][k]) for k in keys], _value(r[col]),
+                    *[_value(r.get(e)) for e in extra], _value(r["jam_probability"]), _value(r["jam_ci95_low"]),
+                    _value(r["jam_ci95_high"]), r["status"]])
+    return buf.getvalue()
+
+
+def tradeoff_png(rows: list[dict], keys: list[str], target: float | None = None) -> bytes | None:
+    """A PNG: P(jam) (95 % interval) against what play costs, one point per design, labelled with
+    its values; the target as a line. None when the points carry no play cost."""
+    got = tradeoff_rows(rows)
+    if got is None:
+        return None
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    col, label, pts = got
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    x = [r[col] for r in pts]
+    y = [r["jam_probability"] for r in pts]
+    err = [[max(0.0, p - r["jam_ci95_low"]) for p, r in zip(y, pts)], [max(0.0, r["jam_ci95_high"] - p)
+                                                                         for p, r in zip(y, pts)]]
+    colours = ["#1a7f37" if r["status"] == "pass" else "#cf222e" for r in pts]
+    ax.errorbar(x, y, yerr=err, fmt="none", ecolor="#888", lw=0.8, capsize=2)
+    ax.scatter(x, y, c=colours, s=26, zorder=3)
+    for r in pts:
+        ax.annotate(", ".join(f"{r['values'][k]:g}" if isinstance(r["values"][k], float) else str(r["values"][k])
+                              for k in keys), (r[col], r["jam_probability"]), fontsize=6, xytext=(3, 3),
+                    textcoords="offset points", color="#444")
+    if target is not None:
+        ax.axhline(target, color="#f58518", lw=1, ls="--", label=f"target {100 * target:g} %")
+        ax.legend(fontsize=7)
+    ax.set_xlabel(label)
+    ax.set_ylabel("P(jam)")
+    ax.set_title(f"P(jam) against what play costs (labels: {', '.join(keys)})", fontsize=8)
+    ax.grid(alpha=0.3)
+    return R.figure_png(fig, 110, "tight")
 METRICS = (("mass_g", "mass of the printed parts (g)"), ("size_mm", "largest part (mm)"),
            ("least_clearance_mm", "least clearance over the motion (mm)"), ("jam_probability", "P(jam)"))
 
@@ -120,14 +197,25 @@ def _plot(rows: list[dict], key: str, metric: str, label: str) -> bytes:
     return R.figure_png(fig, 110, "tight")
 
 
-def sweep_page(rows: list[dict], keys: list[str], title: str, subtitle: str) -> str:
-    """One self-contained HTML page: pass/fail and every metric against each varied key, the table."""
+def sweep_page(rows: list[dict], keys: list[str], title: str, subtitle: str, target: float | None = None) -> str:
+    """One self-contained HTML page: pass/fail and every metric against each varied key, the trade-off
+    of P(jam) against what play costs (when the points have both), the table."""
     n = len(rows)
     counts = {s: sum(r["status"] == s for r in rows) for s in ("pass", "fail", "refused")}
     intro = (f"<p>{n} design points: <span class=\"ok\">{counts['pass']} pass</span>, <span class=\"fail\">"
              f"{counts['fail']} fail</span> `partgen check`, {counts['refused']} refused (the design cannot be built)."
              "</p>")
     sections = [("Summary", intro)]
+    trade = tradeoff_png(rows, keys, target)
+    if trade is not None:
+        col, label, pts = tradeoff_rows(rows)
+        tab = [[r["point"], *[r["values"][k] for k in keys], r[col], f"{100 * r['jam_probability']:.2f} %",
+                f"{100 * r['jam_ci95_low']:.2f}–{100 * r['jam_ci95_high']:.2f} %", r["status"]] for r in pts]
+        sections.append(("The trade-off: P(jam) against what play costs",
+                         "<p>More play: fewer prints jam, and the kit moves further from its nominal motion. Each point "
+                         f"is a design; x: {html.escape(label)}; y: P(jam) with its 95 % interval (tradeoff.csv, "
+                         "tradeoff.png).</p>" + f"<figure>{R.img(trade, 'P(jam) against ' + label)}</figure>"
+                         + R.table(["point", *keys, label, "P(jam)", "95 % interval", "status"], tab, left=1)))
     for key in keys:
         figs = []
         for metric, label in METRICS:

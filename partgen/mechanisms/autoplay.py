@@ -1,101 +1,187 @@
-"""``gears.backlash_per_gear_mm: auto``: the least backlash with which a print of the kit jams
-with probability at most ``tolerance.max_jam_probability`` on the design's printer.
+"""``auto`` play: the least backlash and running clearance with which a print of the kit jams with
+probability at most ``tolerance.max_jam_probability`` on the design's printer.
 
-The design is built and checked once at ``AUTO_PLAY_START_MM``; the mechanism's tolerance model of
-that check (gears seated by their meshes, docs/tolerance.md) gives every margin, and each mesh's
-backlash margin moves with the backlash by its ``per_backlash``; ``design.tolerance.least_play``
-picks the least value on a 0.005 mm grid that meets the target on 20,000 fixed prints (seed 0).
-The design is then loaded with that number in place of ``auto``: the kit, its pinned design.yaml
-and every check see the number. One search per design per process, and the choice is remembered
-between runs (``core.cache``: under the resolved design, the design and printer documents,
+The keys a kind accepts ``auto`` on are its schema's ``AUTO_PLAY`` (dotted key -> role; a kind that
+names none: ``gears.backlash_per_gear_mm`` as a backlash). Two roles:
+
+* ``backlash``: each gear thinned at its reference pitch circle; a mesh's backlash margin moves by
+  its ``per_backlash``; grid ``PLAY_STEP_MM`` (0.005 mm) from one step to ``PLAY_MAX_MM``; built at
+  ``AUTO_PLAY_START_MM``.
+* ``running``: a diametral running clearance; it moves every margin as every running bore printed
+  that much larger does (``design.allocate.hole_slope``: the fit's radial gap by half of it, and the
+  meshes the bores' play is credited to); grid ``RUNNING_STEP_MM`` (0.01 mm diametral) from one
+  step to ``RUNNING_MAX_MM``; built at ``AUTO_RUNNING_START_MM``.
+
+The design is built and checked once with every ``auto`` key at its start value; the mechanism's
+tolerance model of that check (gears seated by their meshes, docs/tolerance.md) gives every margin
+and each knob's slopes; ``design.allocate.least_allocation`` picks the values on 20,000 fixed prints
+(seed 0): one knob by bisection, two by the staircase of least pairs, the least total play (the sum
+of every mesh's backlash and every fit's radial gap the values open) with ties to the smaller value
+of the earlier key. The design is then loaded with those numbers in place of ``auto``: the kit, its
+pinned design.yaml and every check see the numbers. A value that does not build (thinner teeth than
+a rule allows, a bore that leaves no wall) caps its knob at the most that builds, and the search runs
+again. One search per design per process, and the choice is remembered between runs
+(``core.cache``: under the resolved design at the start values, the design and printer documents,
 partgen's source and the libraries' versions, so a remembered choice is the one the search would
-make now).
+make now; the allocation is kept as JSON, so a remembered one reads exactly as a new one).
 """
 
 from __future__ import annotations
 
 import copy
+import json
 import pickle
 from dataclasses import replace
 from pathlib import Path
+
+import numpy as np
 
 from ..config.loader import LoadedDesign
 from ..config.schema import AUTO_PLAY_START_MM
 from ..core.cache import recall, remember
 from ..core.protocol import tolerance_hook
-from ..design.tolerance import PLAY_STEP_MM, least_play
+from ..design.allocate import Knob, hole_slope, least_allocation
+from ..design.tolerance import AUTO_SAMPLES, PLAY_MAX_MM, PLAY_STEP_MM
 from ..errors import ConfigError, DesignError
 
-__all__ = ["KEY", "wants_auto", "resolve_auto"]
+__all__ = ["KEY", "ROLES", "auto_keys", "wants_auto", "at_start", "resolve_auto", "AUTO_RUNNING_START_MM",
+           "RUNNING_STEP_MM", "RUNNING_MAX_MM"]
 
 KEY = ("gears", "backlash_per_gear_mm")
+AUTO_RUNNING_START_MM = 0.3  # a running clearance: auto is built and checked at this value first
+RUNNING_STEP_MM = 0.01  # diametral (0.005 mm radial)
+RUNNING_MAX_MM = 1.0
+
+ROLES = {  # role -> (label, start, step, most)
+    "backlash": ("backlash per gear", AUTO_PLAY_START_MM, PLAY_STEP_MM, PLAY_MAX_MM),
+    "running": ("running clearance, diametral", AUTO_RUNNING_START_MM, RUNNING_STEP_MM, RUNNING_MAX_MM),
+}
 _DONE: dict = {}
 
 
+def _data(raw: LoadedDesign) -> dict:
+    return raw.data if raw.data is not None else raw.document()
+
+
+def _get(data, key: str):
+    node = data
+    for part in key.split("."):
+        if not isinstance(node, dict):
+            return None
+        node = node.get(part)
+    return node
+
+
+def auto_keys(raw: LoadedDesign) -> dict[str, str]:
+    """{dotted key: role} of the keys the design sets to ``auto`` (in the schema's order)."""
+    declared = getattr(type(raw.design), "AUTO_PLAY", None) or {".".join(KEY): "backlash"}
+    data = _data(raw)
+    return {k: role for k, role in declared.items() if _get(data, k) == "auto"}
+
+
 def wants_auto(raw: LoadedDesign) -> bool:
-    data = raw.data if raw.data is not None else raw.document()
-    node = data.get(KEY[0]) if isinstance(data, dict) else None
-    return isinstance(node, dict) and node.get(KEY[1]) == "auto"
+    return bool(auto_keys(raw))
 
 
-def _with(raw: LoadedDesign, value: float) -> LoadedDesign:
-    data = copy.deepcopy(raw.data if raw.data is not None else raw.document())
-    data[KEY[0]][KEY[1]] = value
+def _with(raw: LoadedDesign, values: dict[str, float]) -> LoadedDesign:
+    data = copy.deepcopy(_data(raw))
+    for key, value in values.items():
+        *path, last = key.split(".")
+        node = data
+        for part in path:
+            node = node.setdefault(part, {})
+        node[last] = round(float(value), 6)
     return replace(raw, data=data, design=type(raw.design).model_validate(data))
 
 
-def _builds(raw: LoadedDesign, mech, value: float) -> str | None:
-    """None when the design resolves with ``value``; else what stops it."""
+def at_start(raw: LoadedDesign) -> LoadedDesign:
+    """The design with every ``auto`` play key at its start value (what the search builds)."""
+    keys = auto_keys(raw)
+    return _with(raw, {k: ROLES[r][1] for k, r in keys.items()}) if keys else raw
+
+
+def _builds(raw: LoadedDesign, mech, values: dict) -> str | None:
+    """None when the design resolves with ``values``; else what stops it."""
     try:
-        mech.resolve(_with(raw, round(value, 6)))
+        mech.resolve(_with(raw, values))
     except ConfigError as e:
         return f"{e.key_path}: {e.problem}" if getattr(e, "key_path", None) else str(e)
     return None
 
 
+def _slope(role: str, model) -> np.ndarray:
+    if role == "backlash":
+        return np.array([m.per_backlash for m in model.margins], dtype=float)
+    return hole_slope(model)
+
+
 def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
-    """(the design with the chosen number, the allocation: value, P(jam) it reaches, its interval,
-    the target, the samples)."""
+    """(the design with the chosen numbers, the allocation: each key's value, the P(jam) it reaches,
+    its interval, the target, the samples, what one more step of each would buy)."""
     key = (str(Path(raw.path).resolve()), raw.digest())  # the path too: a design may name files beside it
     if key in _DONE:
-        value, alloc = _DONE[key]
-        return _with(raw, value), alloc
+        values, alloc = _DONE[key]
+        return _with(raw, values), alloc
+    keys = auto_keys(raw)
     hook = tolerance_hook(mech)
     if hook is None:
-        raise ConfigError(raw.path, ".".join(KEY), f"auto needs a tolerance model: a {mech.kind} design has none yet")
-    start = _with(raw, AUTO_PLAY_START_MM)
+        raise ConfigError(raw.path, next(iter(keys)), f"auto needs a tolerance model: a {mech.kind} design has none yet")
+    start = at_start(raw)
     spec = mech.resolve(start)
     what = raw.digest().encode() + b"\0" + pickle.dumps(spec, protocol=5)
     known = recall("auto-play", what)
     if known is not None:
-        _DONE[key] = (known["value"], known["allocation"])
-        return _with(raw, known["value"]), known["allocation"]
+        _DONE[key] = (known["values"], known["allocation"])
+        return _with(raw, known["values"]), known["allocation"]
     try:
         kit = mech.build(spec, None)
     except DesignError as e:
         raise ConfigError(raw.path, e.key_path, e.problem) from None
     result = mech.check(spec, kit, None, None)
     model = hook(spec, kit, result, kit.printer.xy_accuracy)
-    target = raw.design.tolerance.max_jam_probability
-    got = least_play(model, AUTO_PLAY_START_MM, target)
-    limit = None
-    if _builds(raw, mech, got["backlash_per_gear_mm"]) is not None:
-        # thinner teeth break a rule the design is held to (tip width, ...): the most that builds
-        lo, hi = 1, int(round(got["backlash_per_gear_mm"] / PLAY_STEP_MM)) - 1
-        problem = _builds(raw, mech, got["backlash_per_gear_mm"])
+    tol = getattr(raw.design, "tolerance", None)
+    target = tol.max_jam_probability if tol is not None else 0.01
+
+    def knobs(most: dict) -> list[Knob]:
+        out = []
+        for k, role in keys.items():
+            label, s0, step, top = ROLES[role]
+            out.append(Knob(k, label, s0, _slope(role, model), step, 1, most.get(k, int(round(top / step)))))
+        return out
+
+    most: dict = {}
+    limits: dict = {}
+    starts = {k: ROLES[r][1] for k, r in keys.items()}
+    got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
+    for k, role in keys.items():  # a value that does not build caps its knob at the most that does
+        step = ROLES[role][2]
+        problem = _builds(raw, mech, {**starts, k: got["values"][k]})
+        if problem is None:
+            continue
+        lo, hi = 1, int(round(got["values"][k] / step)) - 1
         while lo < hi:
             mid = (lo + hi + 1) // 2
-            if _builds(raw, mech, mid * PLAY_STEP_MM) is None:
+            if _builds(raw, mech, {**starts, k: mid * step}) is None:
                 lo = mid
             else:
                 hi = mid - 1
-        if _builds(raw, mech, lo * PLAY_STEP_MM) is not None:
-            raise ConfigError(raw.path, ".".join(KEY), f"auto: no backlash from {PLAY_STEP_MM} mm builds: {problem}")
-        limit = {"needed_mm": got["backlash_per_gear_mm"], "problem": problem}
-        got = least_play(model, AUTO_PLAY_START_MM, target, most=round(lo * PLAY_STEP_MM, 6))
-    value = got["backlash_per_gear_mm"]
-    alloc = {"key": ".".join(KEY), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
-             "meshes": sum(m.what == "backlash" for m in model.margins), "limited_by": limit}
-    _DONE[key] = (value, alloc)
-    remember("auto-play", what, {"value": value, "allocation": alloc})
-    return _with(raw, value), alloc
+        if _builds(raw, mech, {**starts, k: lo * step}) is not None:
+            raise ConfigError(raw.path, k, f"auto: no value from {step:g} mm builds: {problem}")
+        limits[k] = {"needed_mm": got["values"][k], "problem": problem}
+        most[k] = lo
+        got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
+    values = got["values"]
+    alloc = {"key": ", ".join(keys), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
+             "meshes": sum(m.what == "backlash" for m in model.margins),
+             "joints": sum(m.group == "joint" and m.what == "radial gap" for m in model.margins),
+             "limited_by": limits or None, "credits": model.credits}
+    if ".".join(KEY) in values:  # the name the backlash alone had (tests, --json readers)
+        alloc["backlash_per_gear_mm"] = values[".".join(KEY)]
+    try:
+        alloc = json.loads(json.dumps(alloc))  # as it is remembered: the same whether searched now or not
+    except (TypeError, ValueError):
+        pass  # not JSON: not remembered
+    else:
+        remember("auto-play", what, {"values": values, "allocation": alloc})
+    _DONE[key] = (values, alloc)
+    return _with(raw, values), alloc

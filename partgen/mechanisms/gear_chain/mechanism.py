@@ -79,6 +79,33 @@ def pen_error_band(spec: ChainSpec, theta: np.ndarray):
     return pen_band(spec.mechanism, p.joints.running_clearance / 2, theta, p.printer.xy_accuracy)
 
 
+def _play_html(band: dict, files: dict, params) -> str:
+    """The report's "What play costs": the pen's error band from the kit's backlash and running-fit
+    play (design.play), across the path and from the nominal point, its figure, and each link's free
+    angle."""
+    from ...export import report as R
+
+    r2 = lambda x: f"{float(x):.2f}"  # noqa: E731
+    rows = [["across the path (what the drawing shows)", r2(band["path_worst_case_max"]), r2(band["path_p95_max"]),
+             r2(band["path_p50_max"])],
+            ["from the nominal point at the same crank angle (a lag along the path too)", r2(band["worst_case_max"]),
+             r2(band["p95_max"]), r2(band["p50_max"])]]
+    links = [[j, f"{a:.1f}", f"{c:.3f}"] for j, (a, c) in
+             enumerate(zip(band["link_free_angle_arcmin"], band["joint_radial_play_mm"]), 1)]
+    fig = (f'<figure>{R.img(files["pen_band.png"], "the pen error band over the crank turn", width=640)}'
+           "<figcaption>The pen's error over one crank turn: worst case and 95 % of prints across the nominal path; "
+           "the worst case from the nominal point, dashed.</figcaption></figure>" if "pen_band.png" in files else "")
+    return (f"<p>The pen's error band from the kit's backlash ({params.system.backlash_per_gear:g} mm per gear) and "
+            f"running-fit play ({params.joints.running_clearance:g} mm diametral) on {html.escape(params.printer.name)} "
+            f"(±{params.printer.xy_accuracy:g} mm): every backlash and play taken up in the worst direction (worst "
+            f"case) and the band 95 % of {band['prints']:,} simulated prints stay in, each print held at a random place "
+            "in its play (docs/tolerance.md, What play costs). The trace above draws both bands beside the nominal "
+            "path.</p>"
+            + R.table(["pen error (mm)", "worst case", "95 % of prints", "median print"], rows, left=1) + fig
+            + '<div class="grid">' + R.table(["link", "free angle ± arcmin", "its bore's radial play mm"], links)
+            + "</div>")
+
+
 def crank_text(mech) -> str:
     """How often the crank turns per drawing and why ("" for the usual once)."""
     from ...design.trace import crank_turns
@@ -241,7 +268,7 @@ class GearChain:
         stats["pen_error_band_mm"] = band.to_dict()
         files = []
         if out is not None:
-            from .trace_plots import trace_animation, trace_figure
+            from .trace_plots import band_figure, trace_animation, trace_figure
 
             head = {k: v for k, v in stats.items() if k.endswith("_mm") and not isinstance(v, dict)} or \
                 {k: v for k, v in stats["vs_pruned"].items() if k.endswith("_mm")}
@@ -251,7 +278,9 @@ class GearChain:
                          f"{spec.params.name}: the pen over "
                          + ("one crank turn (mm)" if crank_turns(mech) == 1 else
                             f"one drawing, {crank_turns(mech)} crank turns (mm)"), band=band)
-            files = ["trace.png", "trace.svg"]
+            band_figure(band, out / "pen_band.png", f"{spec.params.name}: the pen's error from the kit's backlash and "
+                        f"running-fit play, on {spec.params.printer.name} (±{spec.params.printer.xy_accuracy:g} mm)")
+            files = ["trace.png", "trace.svg", "pen_band.png"]
             if animate:
                 trace_animation(mech, out / "trace.gif")
                 files.append("trace.gif")
@@ -356,8 +385,10 @@ class GearChain:
             lines.append(f"{label:<28}{d['max_deviation_mm']:>16.3f}{d['rms_mm']:>10.3f}{d['hausdorff_mm']:>14.3f}")
         band = stats.get("pen_error_band_mm")
         if band:
-            lines.append(f"play at the pen (backlash and fits taken up): worst case {band['worst_case_max']:.2f} mm, "
-                         f"95 % of prints within {band['p95_max']:.2f} mm ({band['prints']} prints)")
+            lines.append(f"play at the pen (backlash and fits taken up), across the path: worst case "
+                         f"{band['path_worst_case_max']:.2f} mm, 95 % of prints within {band['path_p95_max']:.2f} mm; "
+                         f"from the nominal point at the same crank angle (a lag along the path too): "
+                         f"{band['worst_case_max']:.2f} / {band['p95_max']:.2f} mm ({band['prints']} prints)")
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
@@ -466,7 +497,11 @@ class GearChain:
                       + (R.table(["check", "severity", "finding", "crank °"], fails, left=3, raw={1}) if fails else "")
                       + R.table(["mesh", "teeth", "centre distance mm", "backlash mm", "measured mm", "contact ratio"],
                                 mesh_rows))
-        return [("Design", design), ("Stacking", stack_html), ("Trace", trace_html), ("Check", check_html)]
+        sections = [("Design", design), ("Stacking", stack_html), ("Trace", trace_html)]
+        band = stats.get("pen_error_band_mm")
+        if band:
+            sections.append(("What play costs", _play_html(band, files, params)))
+        return sections + [("Check", check_html)]
 
     def subtitle(self, spec: ChainSpec) -> str:
         return f"{spec.path.name} — {len(spec.mechanism.chain.links)} links"

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
@@ -219,9 +219,10 @@ class Joints(Strict):
     running_clearance_radial_mm: Finite | None = None
     """Radial running clearance of the revolute joints, bore minus axle on each side (give this or
     running_clearance_diametral_mm)."""
-    running_clearance_diametral_mm: Finite | Literal["printer"] | None = None
+    running_clearance_diametral_mm: Finite | Literal["printer", "auto"] | None = None
     """Diametral running clearance of the revolute joints, bore minus axle; printer: the printer profile's measured
-    running fit (give this or running_clearance_radial_mm)."""
+    running fit; auto: the least that (with the backlash) meets tolerance.max_jam_probability on the printer (give
+    this or running_clearance_radial_mm)."""
     press_fit_clearance_radial_mm: Finite | None = None
     """Radial clearance of the D-fits (parts pressed on a D-flat), hole minus pin on each side; negative:
     interference (give this or press_fit_clearance_diametral_mm)."""
@@ -323,6 +324,8 @@ class Checks(Strict):
 
 
 class Design(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"gears.backlash_per_gear_mm": "backlash",
+                                 "joints.running_clearance_diametral_mm": "running"}  # mechanisms.autoplay
     kind: Literal["gear_chain"]
     """The mechanism this file designs: `gear_chain` selects these keys."""
     curve: Curve | None = None
@@ -351,7 +354,8 @@ class Design(DesignHeader):
     checks: Checks = Checks()
     """What partgen check holds the kit to."""
     tolerance: ToleranceTarget = ToleranceTarget()
-    """The jam probability that gears.backlash_per_gear_mm: auto chooses the play for."""
+    """The jam probability that auto play (gears.backlash_per_gear_mm, joints.running_clearance_diametral_mm) is
+    chosen for."""
     belts: Belts | None = None
     """Timing belts instead of idler gears (needs teeth: auto); none: idler gears."""
 

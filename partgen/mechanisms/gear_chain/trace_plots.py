@@ -41,11 +41,37 @@ def band_axes(ax, pen: np.ndarray, theta: np.ndarray, band) -> None:
     p95 = np.interp(theta % (2 * np.pi), band.theta, band.p95_normal, period=2 * np.pi)
     t = np.gradient(pen)
     nrm = 1j * t / np.maximum(np.abs(t), 1e-12)
-    for w, colour, alpha, label in ((at, "#f58518", 0.25, f"worst case from play (≤ {band.worst.max():.2f} mm)"),
-                                    (p95, "#e45756", 0.35, f"95 % of prints (≤ {band.p95_max:.2f} mm)")):
+    for w, colour, alpha, label in ((at, "#f58518", 0.25, f"worst case from play (≤ {band.worst_normal.max():.2f} mm "
+                                                          "across the path)"),
+                                    (p95, "#e45756", 0.35, f"95 % of prints (≤ {band.p95_path_max:.2f} mm across)")):
         hi, lo = pen + nrm * w, pen - nrm * w
         ax.fill(np.concatenate([hi.real, lo.real[::-1]]), np.concatenate([hi.imag, lo.imag[::-1]]), color=colour,
                 alpha=alpha, lw=0, label=label)
+
+
+def band_figure(band, png, title: str = "") -> None:
+    """The pen's error band (``design.play.PenBand``) over the crank's turn: across the path, the worst
+    case and the band 95 % of prints stay in (what the drawing shows); from the nominal point at the
+    same crank angle, the worst case (a lag along the path included)."""
+    deg = np.degrees(band.theta)
+    fig, ax = plt.subplots(figsize=(7.2, 3.4))
+    ax.plot(deg, band.worst, color="#9d9d9d", lw=1, ls="--",
+            label=f"worst case from the nominal point (≤ {band.worst.max():.2f} mm)")
+    ax.fill_between(deg, 0, band.worst_normal, color="#f58518", alpha=0.35,
+                    label=f"worst case across the path (≤ {band.worst_normal.max():.2f} mm)")
+    ax.fill_between(deg, 0, band.p95_normal, color="#e45756", alpha=0.55,
+                    label=f"95 % of prints across the path (each print ≤ {band.p95_path_max:.2f} mm)")
+    ax.set_xlim(0, 360)
+    ax.set_ylim(0, None)
+    ax.set_xlabel("crank angle (°)")
+    ax.set_ylabel("pen error (mm)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper right")
+    if title:
+        ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
 
 
 def trace_figure(mech: ChainDesign, stats: dict, png, svg=None, title: str = "", band=None) -> None:

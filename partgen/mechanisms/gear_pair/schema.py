@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field
 
@@ -35,9 +35,10 @@ class PairGears(Strict):
 class Axles(Strict):
     diameter_mm: Length = 8.0
     """Diameter of the two posts standing on the base, each gear turning on one."""
-    clearance_diametral_mm: Gap | Literal["printer"] = 0.4
+    clearance_diametral_mm: Gap | Literal["printer", "auto"] = 0.4
     """Diametral running clearance, a gear's bore minus its post; printer: the printer profile's measured running fit
-    (fits.running_clearance_diametral_mm)."""
+    (fits.running_clearance_diametral_mm); auto: the least that (with the backlash) meets
+    tolerance.max_jam_probability on the printer."""
     axial_gap_mm: Gap = 0.5
     """Gap between the base plate and a gear's face."""
 
@@ -57,6 +58,8 @@ class PairChecks(Strict):
 
 
 class GearPairDesign(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"gears.backlash_per_gear_mm": "backlash",
+                                 "axles.clearance_diametral_mm": "running"}  # mechanisms.autoplay
     kind: Literal["gear_pair"]
     """The mechanism this file designs: `gear_pair` selects these keys."""
     gears: PairGears
@@ -68,4 +71,5 @@ class GearPairDesign(DesignHeader):
     checks: PairChecks = PairChecks()
     """What partgen check holds the kit to."""
     tolerance: ToleranceTarget = ToleranceTarget()
-    """The jam probability that `backlash_per_gear_mm: auto` chooses the play for."""
+    """The jam probability that auto play (gears.backlash_per_gear_mm, axles.clearance_diametral_mm) is chosen
+    for."""

@@ -50,6 +50,26 @@ def _hub_summary(h, running: float) -> dict:
                           "slot_mm": [_r6(h.pocket_depth), _r6(h.pocket_s)], "slot_inner_face_mm": _r6(h.slot_x0)}}
 
 
+
+def _lost_motion_html(lm: dict, spec) -> str:
+    """The report's "What play costs" of a train: the output's lost motion (arc-minutes) from each
+    mesh's backlash and the bores' play, and the transmission-error band (play.lost_motion)."""
+    from ...export import report as R
+
+    band = lm.get("transmission_error_band_arcmin")
+    rows = [[m["mesh"], f"{m['backlash_mm']:.3f}", f"{m['backlash_arcmin']:.2f}", f"{m['bores_arcmin']:.2f}"]
+            for m in lm["meshes"]]
+    return (f"<p>Lost motion at the output (the input held, how far the output turns freely): "
+            f"<b>{lm['total']:.1f} arcmin</b> — each mesh's backlash {lm['backlash']:.1f} arcmin and the bores' "
+            f"play {lm['bores']:.1f} arcmin (running clearance {2 * lm['radial_play_mm']:g} mm diametral, taken up "
+            "along each mesh's line of centres), referred to the output through the shafts' speeds "
+            "(docs/tolerance.md, What play costs).</p>"
+            + (f"<p>Transmission-error band: the output stays within {band['low']:.1f} … {band['high']:.1f} arcmin of "
+               f"its nominal angle (width {band['width']:.1f} arcmin): the measured drive- and coast-flank transmission "
+               "error of the printed outlines, widened on each side by half the bores' share.</p>" if band else "")
+            + R.table(["mesh", "backlash mm", "backlash at the output arcmin", "bores at the output arcmin"], rows,
+                      left=1))
+
 class GearTrain:
     kind = "gear_train"
     title = "gear train"
@@ -364,7 +384,11 @@ class GearTrain:
                  f'slowest shaft; measured ratio {t["ratio_measured"]:.5f}, transmission error '
                  f'{t["transmission_error_arcmin"]["peak_to_peak"]:.2f} arcmin peak to peak, backlash at the output '
                  f'{t["backlash_arcmin"]["min"]:.1f}–{t["backlash_arcmin"]["max"]:.1f} arcmin.</p>')
-        return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+        sections = [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error"))]
+        lm = t.get("lost_motion_arcmin")
+        if lm:
+            sections.append(("What play costs", _lost_motion_html(lm, spec)))
+        return sections + [("Check", check)]
 
     def subtitle(self, spec: TrainSpec) -> str:
         if isinstance(spec, RackSpec):

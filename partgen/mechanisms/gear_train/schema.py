@@ -3,11 +3,11 @@ system, the shafts and the frame. Every length in mm, every angle in degrees, cl
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import DesignHeader, Gap, Length, Ratio, Strict, Teeth
+from ...config.schema import DesignHeader, Gap, Length, Ratio, Strict, Teeth, ToleranceTarget
 
 __all__ = ["GearTrainDesign"]
 
@@ -22,9 +22,10 @@ class TrainGears(Strict):
     """Pressure angle of the basic rack (normal or transverse, as helix_system says); 20 is standard."""
     face_width_mm: Length = 8.0
     """Gear thickness along its shaft (each layer of the train)."""
-    backlash_per_gear_mm: Gap = 0.1
+    backlash_per_gear_mm: Gap | Literal["auto"] = 0.1
     """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so a mesh at its
-    zero-backlash centre distance has the sum of both as circumferential backlash."""
+    zero-backlash centre distance has the sum of both as circumferential backlash; auto: the least that (with the
+    running clearance) meets tolerance.max_jam_probability on the printer."""
     profile_shift: Literal["auto"] | Shift = "auto"
     """Profile shift coefficient (× module) of stages that give no centre distance; auto: the smallest shift that
     avoids undercut (0 at and above the undercut limit)."""
@@ -140,9 +141,10 @@ class Rack(Strict):
 class Shafts(Strict):
     diameter_mm: Length = 8.0
     """Diameter of every shaft (and of the carrier's pins unless planetary.pin_diameter_mm)."""
-    running_clearance_diametral_mm: Literal["printer"] | Annotated[float, Field(ge=0, le=5)] = "printer"
+    running_clearance_diametral_mm: Literal["printer", "auto"] | Annotated[float, Field(ge=0, le=5)] = "printer"
     """Diametral running clearance, a bore minus the shaft or pin turning in it; printer: the printer profile's
-    measured running fit."""
+    measured running fit; auto: the least that (with the backlash) meets tolerance.max_jam_probability on the
+    printer."""
     press_fit_clearance_diametral_mm: Literal["printer"] | Annotated[float, Field(ge=-1, le=5)] = "printer"
     """Diametral clearance of a part pressed on a shaft or a pin pressed into a plate (hole minus shaft; negative:
     interference); printer: the printer profile's measured press fit."""
@@ -194,6 +196,8 @@ class TrainChecks(Strict):
 
 
 class GearTrainDesign(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"gears.backlash_per_gear_mm": "backlash",
+                                 "shafts.running_clearance_diametral_mm": "running"}  # mechanisms.autoplay
     kind: Literal["gear_train"]
     """The mechanism this file designs: `gear_train` selects these keys."""
     gears: TrainGears
@@ -210,6 +214,9 @@ class GearTrainDesign(DesignHeader):
     """The frame: two plates on four spacers, and the gaps between layers."""
     checks: TrainChecks = TrainChecks()
     """What partgen check holds the kit to."""
+    tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that auto play (gears.backlash_per_gear_mm, shafts.running_clearance_diametral_mm) is
+    chosen for, and above which check warns."""
 
     @model_validator(mode="after")
     def _train_or_planetary(self):
