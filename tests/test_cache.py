@@ -9,7 +9,6 @@ import pytest
 
 from partgen import pipeline
 from partgen.core import cache
-from partgen.design import tolerance
 from partgen.mechanisms import autoplay
 
 
@@ -51,8 +50,8 @@ def test_auto_play_remembered_is_what_the_search_chooses(own_cache, monkeypatch,
     first = pipeline.load(design)
     assert first.auto is not None
     calls = []
-    real = tolerance.least_play
-    monkeypatch.setattr(autoplay, "least_play", lambda *a, **k: calls.append(1) or real(*a, **k))
+    real = autoplay.least_allocation
+    monkeypatch.setattr(autoplay, "least_allocation", lambda *a, **k: calls.append(1) or real(*a, **k))
     autoplay._DONE.clear()
     again = pipeline.load(design)
     assert calls == [] and again.auto == first.auto
