@@ -42,6 +42,8 @@ def main() -> None:
     ap.add_argument("--prints", type=int, default=200)
     ap.add_argument("--accuracy-mm", type=float, default=0.3)
     ap.add_argument("--config", default=str(CONFIG))
+    ap.add_argument("--write-docs", action="store_true",
+                    help="record the figures in docs/figures.json (section exact_scaling) for the docs to state")
     args = ap.parse_args()
 
     from partgen import cluster, pipeline, studies
@@ -85,6 +87,19 @@ def main() -> None:
     skip = ("seconds", "workers", "seconds_per_print", "cpu_seconds_per_print")
     same = {k: v for k, v in got[1][1].items() if k not in skip} == {k: v for k, v in got[2][1].items() if k not in skip}
     print(f"1 and 2 workers give the same result: {same}")
+    if args.write_docs:
+        import datetime
+        import json
+        out = ROOT / "docs" / "figures.json"
+        figures = json.loads(out.read_text()) if out.exists() else {}
+        figures["exact_scaling"] = {
+            "config": Path(args.config).name, "prints": args.prints, "accuracy_mm": args.accuracy_mm,
+            "check_s": round(check_s, 2), "print_s": round(print_s, 3), "print_of_check": round(print_s / check_s, 3),
+            "one_worker_s": round(got[1][0], 2), "two_workers_s": round(got[2][0], 2), "speedup": round(speed, 2),
+            "print_slowdown": round(slow, 2), "same_result": same, "load_after": load(), "cores": os.cpu_count(),
+            "_run": {"date": datetime.date.today().isoformat(), "by": "benchmarks/bench_exact.py --write-docs"}}
+        out.write_text(json.dumps(figures, indent=1, ensure_ascii=False, sort_keys=True) + "\n")
+        print(f"wrote {out} (exact_scaling)")
 
 
 if __name__ == "__main__":

@@ -303,10 +303,119 @@ def bevel(tmp: Path) -> dict:
     return out
 
 
+def jam(tmp: Path) -> dict:
+    """P(jam) of every shipped design on its printer (and the desktop chain on every desktop
+    printer): the linear study, 10,000 prints, seed 0 (benchmarks/shipped_jam.py), and the default
+    chain as it was before its play was designed (backlash 0.05 mm per gear, fits 0.2 mm)."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from shipped_jam import DESKTOP, figures as jam_of
+
+    names = sorted(p.stem for p in (ROOT / "configs").glob("*.yaml"))
+    jobs = [(n, None, ()) for n in names] + [("butterfly_desktop", p, ()) for p in DESKTOP]
+    rows, over = [], []
+    for name, printer, sets in jobs:
+        f = jam_of(name, 10_000, printer, sets)
+        lo, hi = f["ci95"]
+        if f["probability"] > 0.01:
+            over.append(name)
+        rows.append([f"`{name}.yaml`", f"{f['printer']} ±{f['accuracy_mm']:g}",
+                     f"{100 * f['probability']:.2f} % ({100 * lo:.2f}–{100 * hi:.2f})"
+                     + (" **over 1 %**" if f["probability"] > 0.01 else ""),
+                     f"{100 * f['worst']:.2f} %", f["top"]])
+    old = jam_of("butterfly", 10_000, None, ("gears.backlash_per_gear_mm=0.05", "joints.running_clearance_diametral_mm=0.2"))
+    # the shipped designs' play as it was before it was designed for: what the change bought
+    before = []
+    for name, sets, why in (
+            ("butterfly", ("gears.backlash_per_gear_mm=0.05", "joints.running_clearance_diametral_mm=0.2"), "0.05 mm backlash, 0.2 mm fits"),
+            ("heart", ("gears.backlash_per_gear_mm=0.05", "joints.running_clearance_diametral_mm=0.2"), "0.05 mm backlash, 0.2 mm fits"),
+            ("gear_train_reducer", ("shafts.running_clearance_diametral_mm=0.1",), "the Fortus profile's 0.1 mm running fits"),
+            ("gear_train_planetary", ("gears.backlash_per_gear_mm=0.1",), "0.1 mm backlash per gear"),
+            ("wrist_sphere", ("wrist.clearance_radial_mm=0.15",), "0.15 mm radial socket clearance"),
+            ("bennett_butterfly", ("checks.balance_tolerance_mm=0.1",), "0.1 mm balance tolerance")):
+        f = jam_of(name, 10_000, None, sets)
+        now = next(row for row in rows if row[0] == f"`{name}.yaml`")
+        before.append([f"`{name}.yaml`", why, f"{100 * f['probability']:.2f} %", now[2].split(" (")[0], f["top"]])
+    return {"shipped": table(["design", "printer", "P(jam) seated (95 % CI)", "worst case", "jams most at"], rows),
+            "before": table(["design", "as it was", "P(jam) then", "P(jam) now", "jammed most at"], before),
+            "over_target": ", ".join(over) or "none", "designs": len(names),
+            "chain_as_it_was_pct": pct(old["probability"], 1), "chain_as_it_was_worst_pct": pct(old["worst"], 1)}
+
+
+def exact(tmp: Path) -> dict:
+    """The exact Monte Carlo against the linear study: `partgen tolerance --exact 200` on the gear
+    pair at ±0.3 mm and on the default chain on its Fortus and at ±0.2 mm."""
+    rows = []
+    out = {}
+    for key, config, extra in (("pair_03", "configs/gear_pair.yaml", ("--accuracy-mm", "0.3")),
+                               ("chain", "configs/butterfly.yaml", ()),
+                               ("chain_02", "configs/butterfly.yaml", ("--accuracy-mm", "0.2"))):
+        t = partgen("tolerance", config, "--exact", "200", "--samples", "20000", "--seed", "0", *extra,
+                    "-o", str(tmp / key))
+        e, lin = t["exact"], t["overall"]
+        lo, hi = lin["ci95"]
+        elo, ehi = e["ci95"]
+        agree = "agree" if e["agrees"] else "**disagree**"
+        rows.append([f"`{Path(config).name}{' ' + ' '.join(extra) if extra else ''}`", f"±{t['accuracy_mm']:g}",
+                     f"{100 * lin['probability']:.2f} % ({100 * lo:.2f}–{100 * hi:.2f})",
+                     f"{100 * e['probability']:.2f} % ({100 * elo:.2f}–{100 * ehi:.2f})", agree,
+                     f"{100 * t['worst_case']['probability']:.2f} %"])
+        out[key] = {"linear_pct": pct(lin["probability"], 2), "exact_pct": pct(e["probability"], 2),
+                    "exact_ci_pct": f"{pct(elo, 2)}–{pct(ehi, 2)}", "agree": agree == "agree"}
+    out["table"] = table(["design", "accuracy", "linear, seated (20,000 prints)", "exact, seated (200 prints)",
+                          "intervals", "worst case (linear)"], rows)
+    return out
+
+
+def play(tmp: Path) -> dict:
+    """What play costs: the default chain's pen error band and the reducer's lost motion, as
+    `partgen trace --json` reports them."""
+    t = partgen("trace", "configs/butterfly.yaml", "-o", str(tmp / "chain"))
+    b = t["pen_error_band_mm"]
+    free = b["link_free_angle_arcmin"]
+    g = partgen("trace", "configs/gear_train_reducer.yaml", "-o", str(tmp / "reducer"))
+    lm = g["lost_motion_arcmin"]
+    return {"chain": {"path_worst_mm": r(b["path_worst_case_max"], 1), "path_p95_mm": r(b["path_p95_max"], 1),
+                      "path_p50_mm": r(b["path_p50_max"], 1), "point_worst_mm": r(b["worst_case_max"], 0),
+                      "point_p95_mm": r(b["p95_max"], 0), "point_p50_mm": r(b["p50_max"], 0),
+                      "free_min_arcmin": r(min(free), 0), "free_max_arcmin": r(max(free), 0),
+                      "radial_play_mm": r(max(b["joint_radial_play_mm"]), 3), "prints": b["prints"]},
+            "reducer": {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
+                        "bores_arcmin": r(lm["bores"], 1), "measured_min_arcmin": r(g["backlash_arcmin"]["min"], 1),
+                        "measured_max_arcmin": r(g["backlash_arcmin"]["max"], 1),
+                        "te_band_arcmin": r(lm["transmission_error_band_arcmin"]["width"], 1)}}
+
+
+def lissajous(tmp: Path) -> dict:
+    """The 3:2 Lissajous drawing (configs/lissajous.yaml): the scale `auto` chose, the chain, and its
+    check and trace."""
+    import re
+
+    t0 = time.perf_counter()
+    b = partgen("build", "configs/lissajous.yaml", "-o", str(tmp / "kit"))
+    build_s = time.perf_counter() - t0
+    note = next(f["message"] for f in b["findings"] if f["key"] == "curve.scale")
+    man = json.loads((tmp / "kit" / "manifest.json").read_text())["design"]
+    c = partgen("check", str(tmp / "kit"), ok=(0, 1))
+    t = partgen("trace", str(tmp / "kit"), "-o", str(tmp / "trace"))
+    meshes = c["figures"]["meshes"]
+    teeth = ", ".join("/".join(str(s["teeth"][k]) for k in ("D", "M", "G")) for s in man["stages"])
+    return {"scale": float(re.search(r"auto chose ([0-9.]+)", note)[1]),
+            "rungs_tried": int(re.search(r"(\d+) tried", note)[1]), "build_s": r(build_s, 0),
+            "links": ", ".join(l["name"] for l in man["links"]),
+            "link_mm": r(man["links"][0]["length_mm"], 2), "module_mm": man["module_mm"], "teeth": teeth,
+            "crank_turns": man["crank_turns_per_drawing"], "check_exit": 0 if c["ok"] else 1,
+            "contact_ratio_min": r(min(m["contact_ratio"] for m in meshes), 2),
+            "backlash_min_mm": r(min(m["backlash_mm"] for m in meshes), 3),
+            "backlash_max_mm": r(max(m["backlash_mm"] for m in meshes), 3),
+            "closest_mm": r(c["figures"]["motion"]["closest_approach"]["mm"], 2)
+            if isinstance(c["figures"]["motion"].get("closest_approach"), dict) else "–",
+            "max_deviation_mm": f"{t['max_deviation_mm']:.1g}", "hausdorff_mm": r(t["hausdorff_mm"], 3)}
+
+
 SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
             "tolerance": tolerance, "sweep": sweep, "bennett": bennett,
             "calibrate": calibrate, "wrist": wrist, "bevel": bevel,
-            "printers": printers}
+            "printers": printers, "jam": jam, "exact": exact, "play": play, "lissajous": lissajous}
 
 
 def main(argv=None) -> int:
