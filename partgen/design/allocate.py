@@ -166,3 +166,205 @@ def least_allocation(model: MarginModel, knobs: list[Knob], target: float, sampl
             "cost_mm": round(cost(best), 6), "weights": {k.key: round(w, 6) for k, w in zip(knobs, weights)},
             "frontier": [{k.key: k.value(i) for k, i in zip(knobs, idx)} for idx in frontier],
             "buys": buys, "groups": groups, "units": units}
+
+
+# --- per-unit allocation --------------------------------------------------------------------------
+
+ALLOCATE_MIN_SAVING = 0.05  # adopt a per-unit allocation only when it saves more than 5 % of the uniform total play
+EXCHANGE_TRIES = 4  # raises tried (best first) each time the descent stalls
+MAX_ROUNDS = 2000  # moves at most (a bound, never reached on the shipped designs)
+
+
+@dataclass(frozen=True)
+class Unit:
+    """One gear's backlash or one running fit's clearance as its own number: ``key`` (the design key
+    it belongs to), ``name`` (the gear or the part that runs in the bore), ``start`` (mm the model's
+    kit was built with), ``slope`` (K,) mm of margin per mm, ``step`` and the grid ``least`` …
+    ``most`` (in steps)."""
+
+    key: str
+    name: str
+    start: float
+    slope: np.ndarray
+    step: float
+    least: int
+    most: int
+
+    def value(self, i: int) -> float:
+        return round(i * self.step, 6)
+
+
+def _natural(name: str) -> tuple:
+    """G2 before G10: the letters, then the number."""
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    return (head, int(tail) if tail else -1, name)
+
+
+def gear_slopes(model: MarginModel) -> dict[str, np.ndarray]:
+    """{gear: (K,) mm of margin per mm of *that gear's* backlash}: a mesh ``a/b``'s backlash margin
+    moves by half its ``per_backlash`` per mm of either gear's thinning (each gear's thinning Δ opens
+    Δ·cos α/cos α_w on the operating circle); in natural name order."""
+    out: dict[str, np.ndarray] = {}
+    for k, m in enumerate(model.margins):
+        if m.group != "mesh" or m.what != "backlash" or not m.per_backlash:
+            continue
+        for gear in m.unit.split("/"):
+            out.setdefault(gear, np.zeros(len(model.margins)))[k] += m.per_backlash / 2
+    return {g: out[g] for g in sorted(out, key=_natural)}
+
+
+def joint_slopes(model: MarginModel) -> dict[str, np.ndarray]:
+    """{part: (K,) mm of margin per mm of *its* running fit's diametral clearance}: the coefficients
+    of its bore (the ``hole`` feature of its ``joint`` margin ``"<part> on <carrier>"``): the fit's gap
+    and every mesh its play is credited to; in natural name order."""
+    holes = np.array([f.kind == "hole" for f in model.features], dtype=bool)
+    out: dict[str, np.ndarray] = {}
+    for k, m in enumerate(model.margins):
+        if m.group != "joint" or m.what != "radial gap":
+            continue
+        rows = np.flatnonzero(holes & (model.coeff[:, k] != 0.0))
+        if len(rows) != 1:
+            continue
+        name = m.unit.split(" on ")[0]
+        if name not in out:
+            out[name] = model.coeff[rows[0]].copy()
+    return {n: out[n] for n in sorted(out, key=_natural)}
+
+
+class _State:
+    """The fixed prints' margins at the current values (each column recomputed from the draws and
+    every unit's values, never accumulated), and how many of each print's margins are below 0 (a
+    print jams when any is). A move's effect is kept as the prints whose count it changes (few: those
+    whose margins cross 0), and forgotten when a move changes one of its columns."""
+
+    def __init__(self, base: np.ndarray, units: list[Unit], idx: list[int]):
+        self.base, self.units, self.idx = base, units, list(idx)
+        self.S = np.array([u.slope for u in units])  # (U, K)
+        self.starts = np.array([u.start for u in units])
+        self.cols = [np.flatnonzero(u.slope != 0.0) for u in units]
+        share = [set(c.tolist()) for c in self.cols]
+        self.touch = [[j for j in range(len(units)) if share[i] & share[j]] for i in range(len(units))]
+        self.m = base + (self._values(self.idx) - self.starts) @ self.S
+        self.neg = self.m < 0.0
+        self.cnt = self.neg.sum(axis=1)
+        self.jams = int((self.cnt > 0).sum())
+        self.memo: dict = {}
+
+    def _values(self, idx) -> np.ndarray:
+        return np.array([u.value(i) for u, i in zip(self.units, idx)])
+
+    def _effect(self, i: int, d: int):
+        """(prints whose count changes, by how much, unit i's columns' new margins)."""
+        c = self.cols[i]
+        idx = list(self.idx)
+        idx[i] += d
+        new = self.base[:, c] + ((self._values(idx) - self.starts) @ self.S[:, c])[None, :]
+        delta = (new < 0.0).sum(axis=1) - self.neg[:, c].sum(axis=1)
+        rows = np.flatnonzero(delta)
+        return rows, delta[rows], new
+
+    def trial(self, i: int, d: int) -> int:
+        """Jams with unit i moved ``d`` steps."""
+        if (i, d) not in self.memo:
+            rows, delta, _ = self._effect(i, d)
+            self.memo[(i, d)] = (rows, delta)
+        rows, delta = self.memo[(i, d)]
+        before = self.cnt[rows] > 0
+        after = (self.cnt[rows] + delta) > 0
+        return self.jams - int(before.sum()) + int(after.sum())
+
+    def move(self, i: int, d: int) -> None:
+        rows, delta, new = self._effect(i, d)
+        c = self.cols[i]
+        self.m[:, c] = new
+        self.neg[:, c] = new < 0.0
+        self.jams -= int((self.cnt[rows] > 0).sum())
+        self.cnt[rows] += delta
+        self.jams += int((self.cnt[rows] > 0).sum())
+        self.idx[i] += d
+        for j in self.touch[i]:
+            for k in [k for k in self.memo if k[0] == j]:
+                del self.memo[k]
+
+
+def allocate_units(model: MarginModel, units: list[Unit], start: list[int], allowed: int,
+                   samples: int = AUTO_SAMPLES, seed: int = 0) -> dict:
+    """Each unit its own value (on its grid), from the feasible ``start`` (grid indices): the least
+    total play Σ weight_i · value_i (weight: the play margins a unit opens per mm, ``play_weight``)
+    with at most ``allowed`` jams among the same fixed prints as ``least_allocation``.
+
+    Deterministic greedy: **descent** — lower by one step the unit that saves most play per jam it
+    adds (a step that adds none first, the largest saving first), while the jams stay within
+    ``allowed``; when none can be lowered, **exchange** — raise by one step a unit that saves jams
+    (the most jams saved per mm of play first; at most ``EXCHANGE_TRIES`` of them), hold it, and
+    descend again; keep the exchange when the total play fell, else undo it and try the next; stop
+    when none helps. Costs are compared quantised (``core.quantise``), ratios exactly (integer cross
+    products); ties go to the unit with the larger value, then the earlier unit (the ``units``
+    order: each key's units in natural name order). ``jam`` in the result: (N, K) which margins of
+    which prints are below 0 at the values."""
+    from fractions import Fraction
+
+    base = _draws(model, samples, seed)
+    st = _State(base, units, start)
+    if st.jams > allowed:
+        raise ValueError(f"the start jams {st.jams} > {allowed}")
+    w = [play_weight(model, u.slope) for u in units]
+    save = [quantise(wi * u.step) for wi, u in zip(w, units)]  # play one step of each unit opens, in 1e-6 mm
+
+    def cost() -> int:
+        return sum(quantise(wi * u.value(i)) for wi, u, i in zip(w, units, st.idx))
+
+    def descend(hold: int | None) -> int:
+        moves = 0
+        while moves < MAX_ROUNDS:
+            best, key = None, None
+            slack = allowed - st.jams
+            for i, u in enumerate(units):
+                if i == hold or st.idx[i] <= u.least or save[i] <= 0:
+                    continue
+                j = st.trial(i, -1)
+                added = j - st.jams
+                if added > slack:
+                    continue
+                k = (0, -save[i], -st.idx[i] * save[i], i) if added <= 0 else \
+                    (1, -Fraction(save[i], added), -st.idx[i] * save[i], i)
+                if key is None or k < key:
+                    best, key = i, k
+            if best is None:
+                return moves
+            st.move(best, -1)
+            moves += 1
+        return moves
+
+    descend(None)
+    exchanges = 0
+    for _ in range(MAX_ROUNDS):
+        now = cost()
+        gains = []
+        for i, u in enumerate(units):
+            if st.idx[i] >= u.most or save[i] <= 0:
+                continue
+            j = st.trial(i, +1)
+            if st.jams - j > 0:
+                gains.append((-Fraction(st.jams - j, save[i]), i))
+        kept = False
+        for _, i in sorted(gains)[:EXCHANGE_TRIES]:
+            before = list(st.idx)
+            st.move(i, +1)
+            descend(i)
+            if cost() < now:
+                kept = True
+                exchanges += 1
+                break
+            for n in range(len(units)):  # undo: back to the values before the raise
+                if st.idx[n] != before[n]:
+                    st.move(n, before[n] - st.idx[n])
+        if not kept:
+            break
+        descend(None)
+    j = st.jams
+    lo95, hi95 = wilson(j, samples)
+    return {"values": [u.value(i) for u, i in zip(units, st.idx)], "index": list(st.idx), "jams": j,
+            "probability": j / samples, "ci95": [lo95, hi95], "cost_mm": round(cost() * 1e-6, 6),
+            "weights": [round(x, 6) for x in w], "exchanges": exchanges, "jam": st.neg}
