@@ -17,8 +17,13 @@ tolerance model of that check (gears seated by their meshes, docs/tolerance.md) 
 and each knob's slopes; ``design.allocate.least_allocation`` picks the values on 20,000 fixed prints
 (seed 0): one knob by bisection, two by the staircase of least pairs, the least total play (the sum
 of every mesh's backlash and every fit's radial gap the values open) with ties to the smaller value
-of the earlier key. The design is then loaded with those numbers in place of ``auto``: the kit, its
-pinned design.yaml and every check see the numbers. A value that does not build (thinner teeth than
+of the earlier key. Then, where the kind takes a value per gear and per joint (its schema's
+``PER_UNIT_PLAY``), each gear's backlash and each running fit's clearance are allocated on their own
+from the uniform choice (``design.allocate.allocate_units``: no more jams among the same prints,
+the least total play; ``_per_unit``), and the allocation is adopted when it saves more than one grid
+step of the coarsest key over the whole kit: those keys become mappings ``{default: the uniform
+value, <gear or joint>: its own}``. The design is then loaded with those numbers in place of
+``auto``: the kit, its pinned design.yaml and every check see the numbers. A value that does not build (thinner teeth than
 a rule allows, a bore that leaves no wall) caps its knob at the most that builds, and the search runs
 again. One search per design per process, and the choice is remembered between runs
 (``core.cache``: under the resolved design at the start values, the design and printer documents,
@@ -203,9 +208,11 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
 def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict) -> dict:
     """Each gear its own backlash and each running fit its own clearance, from the uniform choice
     ``got`` (``design.allocate.allocate_units``, on the same prints and grids, each unit at most its
-    key's most); adopted when it saves more play than one grid step of the coarsest key over the
-    whole kit (the uniform choice's own resolution) and builds without a warning the uniform kit
-    has not. The result says why not when it is not."""
+    key's most), with no more jams than ``got`` itself (so at most the target: the allocation moves
+    play between the units, it does not spend the slack the uniform grid left); adopted when it
+    saves more play than one grid step of the coarsest key over the whole kit (the uniform choice's
+    own resolution) and builds without a warning the uniform kit has not. The result says why not
+    when it is not."""
     per = getattr(type(raw.design), "PER_UNIT_PLAY", frozenset())
     out = {"adopted": False, "why": None, "threshold": "more than one grid step of the coarsest key over the kit"}
     if not per or not set(keys) <= set(per):
@@ -222,7 +229,7 @@ def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict)
         for name, sl in slopes.items():
             units.append(Unit(k, name, s0, sl, step, 1, most.get(k, int(round(top / step)))))
             start.append(i0)
-    allowed = int(math.floor(got["target"] * got["samples"] + 1e-9)) if got["reached"] else got["jams"]
+    allowed = got["jams"]  # the uniform choice's own jams: play is moved, the slack its grid left is not spent
     res = allocate_units(model, units, start, allowed, got["samples"], got["seed"])
     uniform = sum(play_weight(model, u.slope) * u.value(i) for u, i in zip(units, start))
     saving = uniform - res["cost_mm"]
