@@ -79,32 +79,45 @@ def test_the_units_split_the_keys_slopes():
     assert np.allclose(sum(j.values()), hole_slope(jm))
 
 
+def _analytic(model, units, values):
+    """The union bound of the margins' normal tails at per-unit ``values`` (mm), computed here."""
+    from statistics import NormalDist
+    mu = model.nominal + sum((v - u.start) * u.slope for u, v in zip(units, values))
+    sd = np.sqrt(((model.coeff * model.sigma[:, None]) ** 2).sum(axis=0))
+    return sum(NormalDist().cdf(-m / s) for m, s in zip(mu, sd))
+
+
 def test_allocation_moves_play_to_the_mesh_that_carries_the_jams():
     """Four meshes, one three times as scattered: the uniform choice gives every gear what that mesh
-    needs; the allocation gives it more and the others less, meets the target on the same prints,
-    costs less, and no gear can lose a step without breaking the target (a local least)."""
+    needs; the allocation gives it more and the others less at no more model probability of a jam,
+    costs less, jams about as often on fresh prints, and no gear can lose a step without raising the
+    probability above the uniform's (a local least)."""
     model = _meshes()
     units = _units(model)
     slope = np.array([m.per_backlash for m in model.margins])
     from partgen.design.allocate import Knob
     uni = least_allocation(model, [Knob(BL, "backlash per gear", 0.0, slope, 0.005, 1, 100)], 0.01)
     b = uni["values"][BL]
-    allowed = math.floor(0.01 * 20_000)
-    got = allocate_units(model, units, [round(b / 0.005)] * len(units), allowed)
+    start = [round(b / 0.005)] * len(units)
+    got = allocate_units(model, units, start)
     vals = dict(zip([u.name for u in units], got["values"]))
-    assert got["jams"] == _jams(model, units, got["values"]) <= allowed
+    assert got["jams"] == _jams(model, units, got["values"])
+    budget = _analytic(model, units, [b] * len(units))
+    assert _analytic(model, units, got["values"]) <= budget * (1 + 1e-9)
     assert vals["A2"] + vals["B2"] > 2 * b  # the scattered mesh got more than the uniform value
     assert all(vals[f"A{k}"] + vals[f"B{k}"] < 2 * b for k in (0, 1, 3))  # the others less
     w = [play_weight(model, u.slope) for u in units]
     assert math.isclose(got["cost_mm"], sum(x * v for x, v in zip(w, got["values"])), abs_tol=1e-6)
     assert got["cost_mm"] < uni["cost_mm"] - 0.05
-    for i, u in enumerate(units):  # one step less of any gear breaks the target
+    for i, u in enumerate(units):  # one step less of any gear raises the probability above the budget
         lower = list(got["values"])
         lower[i] = round(lower[i] - 0.005, 6)
-        assert lower[i] < 0.005 or _jams(model, units, lower) > allowed, u.name
-    # deterministic, and a tighter target costs more
-    assert allocate_units(model, units, [round(b / 0.005)] * len(units), allowed)["values"] == got["values"]
-    assert allocate_units(model, units, [100] * len(units), allowed // 2)["cost_mm"] > got["cost_mm"]
+        assert lower[i] < 0.005 or _analytic(model, units, lower) > budget * (1 - 1e-9), u.name
+    # not fitted to the luck of any prints: on 100,000 others it jams as the uniform values do (±5 σ)
+    fresh_u = _jams(model, units, [b] * len(units), 100_000, seed=5)
+    fresh_a = _jams(model, units, got["values"], 100_000, seed=5)
+    assert abs(fresh_a - fresh_u) < 5 * math.sqrt(fresh_u), (fresh_a, fresh_u)
+    assert allocate_units(model, units, start)["values"] == got["values"]  # deterministic
 
 
 def _perturbed(model, n):
@@ -128,7 +141,7 @@ def test_allocation_survives_ulp_perturbations(which):
     if which == "synthetic":
         model = _meshes((0.02, 0.03, 0.05, 0.025, 0.04, 0.02), seed=3)
         make = _units
-        start = 40
+        start = 12
     else:
         over = pipeline.overrides([f"{BL}=0.05", "axles.clearance_diametral_mm=0.3"], "ender3_v3")
         loaded = pipeline.load(PAIR, over=over)
@@ -138,12 +151,12 @@ def test_allocation_survives_ulp_perturbations(which):
         make = _pair_units
         start = None
     units = make(model)
-    idx = [start or (20 if u.key == BL else 40) for u in units]
-    base = allocate_units(model, units, idx, 200)
-    assert base["jams"] <= 200
+    idx = [start or (12 if u.key == BL else 30) for u in units]
+    base = allocate_units(model, units, idx)
+    assert which == "gear_pair" or base["values"] != [u.value(i) for u, i in zip(units, idx)]  # it moved
     for n in (-3, 2):
         moved = _perturbed(model, n)
-        assert allocate_units(moved, make(moved), idx, 200)["values"] == base["values"], n
+        assert allocate_units(moved, make(moved), idx)["values"] == base["values"], n
 
 
 @pytest.fixture(scope="module")
@@ -168,7 +181,9 @@ def test_the_default_chain_is_allocated_and_saves_play(chain_auto):
     pu = a["per_unit"]
     assert pu["adopted"], pu["why"]
     assert a["meshes"] == 21 and a["joints"] == 22
-    assert pu["jams"] <= a["uniform"]["jams"] <= math.floor(a["target"] * a["samples"])  # never more jams than uniform
+    assert pu["jams"] <= math.floor(a["target"] * a["samples"]) and pu["analytic"]["end"] <= pu["analytic"]["start"]
+    h = pu["held_out"]  # on other prints: about as many jams as the uniform values (not fitted to its prints' luck)
+    assert abs(h["jams"] - h["uniform_jams"]) < 4 * math.sqrt(h["uniform_jams"]), h
     assert a["probability"] == pu["probability"] <= 0.01
     assert pu["cost_mm"] < pu["uniform_cost_mm"] - pu["threshold_mm"]  # more than one grid step of the coarsest key
     assert pu["uniform_cost_mm"] == a["uniform"]["cost_mm"]
@@ -204,11 +219,11 @@ def test_the_pinned_design_rebuilds_the_kit_and_meets_the_target(chain_auto, pin
     runs = {c.a: c.radial_gap for c in checked.kit.contacts if c.kind == "running"}
     for name, v in a["per_unit"]["own"][RC].items():
         assert math.isclose(runs[name], v / 2)
-    rows = {tuple(r["parts"]): r for r in checked.result.figures["fits"]["rows"]}
-    wide = max(a["per_unit"]["own"][RC], key=lambda n: a["per_unit"]["own"][RC][n])
-    narrow = [c.a for c in checked.kit.contacts if c.kind == "running" and c.a not in a["per_unit"]["own"][RC]][0]
-    gap = lambda n: next(r["radial_gap_mm"] for k, r in rows.items() if k[0] == n)  # noqa: E731
-    assert gap(wide) > gap(narrow) + 0.004  # measured on the solids: the wider clearance is wider
+    rows = {tuple(r["parts"]): r.get("radial_gap_mm") for r in checked.result.figures["fits"]["rows"]}
+    carrier = {c.a: c.b for c in checked.kit.contacts if c.kind == "running"}
+    for name, v in a["per_unit"]["own"][RC].items():  # measured on the solids
+        got = rows[(name, carrier[name])]
+        assert abs(got - v / 2) < 0.003, (name, got, v)
 
 
 def _thickness(poly, r: float, teeth: int) -> float:
@@ -235,6 +250,25 @@ def test_a_gears_own_backlash_reaches_its_teeth():
     g2 = s.gear2
     uniform = involute.reference_tooth_thickness(g2.teeth, g2.module, g2.system.pressure_angle, g2.profile_shift, 0.1)
     assert uniform - got["gear2"] > 0.19  # 0.2 mm thinner than with the default
+
+
+def test_a_gears_own_clearance_reaches_its_bore():
+    """The pair with gear1's bore 0.6 mm over its post and gear2's the default 0.4: measured on the
+    sections, gear1's bore is 0.1 mm wider in radius; the check and the model read each gear's gap."""
+    over = pipeline.overrides(["axles.clearance_diametral_mm={default: 0.4, gear1: 0.6}"])
+    c = pipeline.check(PAIR, 24, write_plates=False, over=over)
+    s = c.loaded.spec
+    bore = {}
+    for name in ("gear1", "gear2"):
+        part = next(p for p in c.kit.parts if p.name == name)
+        poly = section(part.solid, s.face_width / 2)
+        ring = min((np.asarray(r.coords) for r in poly.interiors), key=lambda xy: np.hypot(*xy[:, :2].T).mean())
+        bore[name] = float(np.hypot(*ring[:, :2].T).mean())
+    assert abs(bore["gear1"] - (s.axle_radius + 0.3)) < 0.01 and abs(bore["gear2"] - (s.axle_radius + 0.2)) < 0.01
+    assert c.result.figures["radial_gaps_mm"] == pytest.approx([0.3, 0.2])
+    model = c.loaded.mechanism.tolerance_model(s, c.kit, c.result, c.kit.printer.xy_accuracy)
+    gaps = {m.unit: m.nominal for m in model.margins if m.what == "radial gap"}
+    assert gaps == pytest.approx({"gear1 on its post": 0.3, "gear2 on its post": 0.2})
 
 
 def test_a_chain_gears_own_backlash_reaches_its_teeth(chain_auto, pinned):

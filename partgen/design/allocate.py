@@ -40,7 +40,8 @@ import numpy as np
 from ..core.quantise import quantise
 from .tolerance import AUTO_SAMPLES, GROUPS, MarginModel, wilson
 
-__all__ = ["Knob", "least_allocation", "play_weight", "hole_slope"]
+__all__ = ["Knob", "least_allocation", "play_weight", "hole_slope", "Unit", "allocate_units", "gear_slopes",
+           "joint_slopes"]
 
 PLAY_WHATS = ("backlash", "radial gap")  # the margins that are the kit's play (a mesh's, a running fit's)
 
@@ -82,8 +83,9 @@ def play_weight(model: MarginModel, slope: np.ndarray) -> float:
     return float(np.asarray(slope)[sel].sum())
 
 
-def _draws(model: MarginModel, samples: int, seed: int) -> np.ndarray:
-    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
+def _draws(model: MarginModel, samples: int, seed: int, chunk: int = 0) -> np.ndarray:
+    """The margins of ``samples`` prints: chunk ``chunk`` of the stream ``run_chunk`` draws."""
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(chunk,)))
     z = rng.standard_normal((samples, len(model.features)))
     return model.nominal[None, :] + z @ (model.coeff * model.sigma[:, None])
 
@@ -170,7 +172,6 @@ def least_allocation(model: MarginModel, knobs: list[Knob], target: float, sampl
 
 # --- per-unit allocation --------------------------------------------------------------------------
 
-ALLOCATE_MIN_SAVING = 0.05  # adopt a per-unit allocation only when it saves more than 5 % of the uniform total play
 EXCHANGE_TRIES = 4  # raises tried (best first) each time the descent stalls
 MAX_ROUNDS = 2000  # moves at most (a bound, never reached on the shipped designs)
 
@@ -232,83 +233,73 @@ def joint_slopes(model: MarginModel) -> dict[str, np.ndarray]:
     return {n: out[n] for n in sorted(out, key=_natural)}
 
 
-class _State:
-    """The fixed prints' margins at the current values (each column recomputed from the draws and
-    every unit's values, never accumulated), and how many of each print's margins are below 0 (a
-    print jams when any is). A move's effect is kept as the prints whose count it changes (few: those
-    whose margins cross 0), and forgotten when a move changes one of its columns."""
+PROB_STEP = 1e-12  # the resolution probabilities are compared at (quantised: the same choice on any machine)
 
-    def __init__(self, base: np.ndarray, units: list[Unit], idx: list[int]):
-        self.base, self.units, self.idx = base, units, list(idx)
+
+class _Analytic:
+    """Each margin's exact probability of going below 0 in the linear model (a margin is normal:
+    mean the nominal moved by the units' values, σ from its features' spreads), at the current
+    values; the kit's is taken as their sum (the union bound: exact for rare jams that do not
+    coincide, above it otherwise), so no print's luck steers the allocation."""
+
+    def __init__(self, model: MarginModel, units: list[Unit], idx: list[int]):
+        self.units, self.idx = units, list(idx)
         self.S = np.array([u.slope for u in units])  # (U, K)
         self.starts = np.array([u.start for u in units])
+        self.sd = np.sqrt(((model.coeff * model.sigma[:, None]) ** 2).sum(axis=0))
+        self.nominal = model.nominal
         self.cols = [np.flatnonzero(u.slope != 0.0) for u in units]
-        share = [set(c.tolist()) for c in self.cols]
-        self.touch = [[j for j in range(len(units)) if share[i] & share[j]] for i in range(len(units))]
-        self.m = base + (self._values(self.idx) - self.starts) @ self.S
-        self.neg = self.m < 0.0
-        self.cnt = self.neg.sum(axis=1)
-        self.jams = int((self.cnt > 0).sum())
-        self.memo: dict = {}
+        self.moving = np.flatnonzero((self.S != 0.0).any(axis=0) & (self.sd > 0))
+        self.p = self._p(self.idx, self.moving)
 
     def _values(self, idx) -> np.ndarray:
         return np.array([u.value(i) for u, i in zip(self.units, idx)])
 
-    def _effect(self, i: int, d: int):
-        """(prints whose count changes, by how much, unit i's columns' new margins)."""
-        c = self.cols[i]
-        idx = list(self.idx)
-        idx[i] += d
-        new = self.base[:, c] + ((self._values(idx) - self.starts) @ self.S[:, c])[None, :]
-        delta = (new < 0.0).sum(axis=1) - self.neg[:, c].sum(axis=1)
-        rows = np.flatnonzero(delta)
-        return rows, delta[rows], new
+    def _p(self, idx, cols) -> np.ndarray:
+        mu = self.nominal[cols] + (self._values(idx) - self.starts) @ self.S[:, cols]
+        return np.array([0.5 * math.erfc(m / (s * math.sqrt(2.0))) for m, s in zip(mu, self.sd[cols])])
+
+    def total(self, p=None) -> int:
+        return quantise(float(np.sum(self.p if p is None else p)), PROB_STEP)
 
     def trial(self, i: int, d: int) -> int:
-        """Jams with unit i moved ``d`` steps."""
-        if (i, d) not in self.memo:
-            rows, delta, _ = self._effect(i, d)
-            self.memo[(i, d)] = (rows, delta)
-        rows, delta = self.memo[(i, d)]
-        before = self.cnt[rows] > 0
-        after = (self.cnt[rows] + delta) > 0
-        return self.jams - int(before.sum()) + int(after.sum())
+        """The kit's probability (quantised) with unit i moved ``d`` steps."""
+        idx = list(self.idx)
+        idx[i] += d
+        p = self.p.copy()
+        cols = np.intersect1d(self.cols[i], self.moving)
+        where = np.searchsorted(self.moving, cols)
+        p[where] = self._p(idx, cols)
+        return self.total(p)
 
     def move(self, i: int, d: int) -> None:
-        rows, delta, new = self._effect(i, d)
-        c = self.cols[i]
-        self.m[:, c] = new
-        self.neg[:, c] = new < 0.0
-        self.jams -= int((self.cnt[rows] > 0).sum())
-        self.cnt[rows] += delta
-        self.jams += int((self.cnt[rows] > 0).sum())
         self.idx[i] += d
-        for j in self.touch[i]:
-            for k in [k for k in self.memo if k[0] == j]:
-                del self.memo[k]
+        cols = np.intersect1d(self.cols[i], self.moving)
+        self.p[np.searchsorted(self.moving, cols)] = self._p(self.idx, cols)
 
 
-def allocate_units(model: MarginModel, units: list[Unit], start: list[int], allowed: int,
-                   samples: int = AUTO_SAMPLES, seed: int = 0) -> dict:
-    """Each unit its own value (on its grid), from the feasible ``start`` (grid indices): the least
-    total play Σ weight_i · value_i (weight: the play margins a unit opens per mm, ``play_weight``)
-    with at most ``allowed`` jams among the same fixed prints as ``least_allocation``.
+def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samples: int = AUTO_SAMPLES,
+                   seed: int = 0) -> dict:
+    """Each unit its own value (on its grid), from ``start`` (grid indices, the uniform choice): the
+    least total play Σ weight_i · value_i (weight: the play margins a unit opens per mm,
+    ``play_weight``) whose probability of a jam (``_Analytic``: each margin's exact normal tail,
+    summed) is no more than at ``start``.
 
-    Deterministic greedy: **descent** — lower by one step the unit that saves most play per jam it
-    adds (a step that adds none first, the largest saving first), while the jams stay within
-    ``allowed``; when none can be lowered, **exchange** — raise by one step a unit that saves jams
-    (the most jams saved per mm of play first; at most ``EXCHANGE_TRIES`` of them), hold it, and
-    descend again; keep the exchange when the total play fell, else undo it and try the next; stop
-    when none helps. Costs are compared quantised (``core.quantise``), ratios exactly (integer cross
-    products); ties go to the unit with the larger value, then the earlier unit (the ``units``
-    order: each key's units in natural name order). ``jam`` in the result: (N, K) which margins of
-    which prints are below 0 at the values."""
+    Deterministic greedy: **descent** — lower by one step the unit that saves most play per
+    probability it adds (a step that adds none first, the largest saving first), while the
+    probability stays within the start's; when none can be lowered, **exchange** — raise by one step
+    a unit that lowers the probability (the most per mm of play first; at most ``EXCHANGE_TRIES``
+    of them), hold it, and descend again; keep the exchange when the total play fell, else undo it
+    and try the next; stop when none helps. Costs and probabilities are compared quantised
+    (``core.quantise``: 1e-6 mm, ``PROB_STEP``), ratios exactly (fractions of those integers); ties go
+    to the unit with the larger value, then the earlier unit (the ``units`` order: each key's units
+    in natural name order). The result counts the jams at the values among the ``samples`` fixed
+    prints (seed, chunk 0: ``least_allocation``'s) and gives ``jam`` (N, K): which margins of which
+    prints are below 0."""
     from fractions import Fraction
 
-    base = _draws(model, samples, seed)
-    st = _State(base, units, start)
-    if st.jams > allowed:
-        raise ValueError(f"the start jams {st.jams} > {allowed}")
+    st = _Analytic(model, units, start)
+    budget = st.total()
     w = [play_weight(model, u.slope) for u in units]
     save = [quantise(wi * u.step) for wi, u in zip(w, units)]  # play one step of each unit opens, in 1e-6 mm
 
@@ -319,14 +310,14 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], allo
         moves = 0
         while moves < MAX_ROUNDS:
             best, key = None, None
-            slack = allowed - st.jams
+            now = st.total()
             for i, u in enumerate(units):
                 if i == hold or st.idx[i] <= u.least or save[i] <= 0:
                     continue
-                j = st.trial(i, -1)
-                added = j - st.jams
-                if added > slack:
+                p = st.trial(i, -1)
+                if p > budget:
                     continue
+                added = p - now
                 k = (0, -save[i], -st.idx[i] * save[i], i) if added <= 0 else \
                     (1, -Fraction(save[i], added), -st.idx[i] * save[i], i)
                 if key is None or k < key:
@@ -340,14 +331,14 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], allo
     descend(None)
     exchanges = 0
     for _ in range(MAX_ROUNDS):
-        now = cost()
+        now, p0 = cost(), st.total()
         gains = []
         for i, u in enumerate(units):
             if st.idx[i] >= u.most or save[i] <= 0:
                 continue
-            j = st.trial(i, +1)
-            if st.jams - j > 0:
-                gains.append((-Fraction(st.jams - j, save[i]), i))
+            gain = p0 - st.trial(i, +1)
+            if gain > 0:
+                gains.append((-Fraction(gain, save[i]), i))
         kept = False
         for _, i in sorted(gains)[:EXCHANGE_TRIES]:
             before = list(st.idx)
@@ -363,8 +354,12 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], allo
         if not kept:
             break
         descend(None)
-    j = st.jams
+    S = np.array([u.slope for u in units])
+    starts = np.array([u.start for u in units])
+    jam = (_draws(model, samples, seed) + (st._values(st.idx) - starts) @ S) < 0.0
+    j = int(jam.any(axis=1).sum())
     lo95, hi95 = wilson(j, samples)
     return {"values": [u.value(i) for u, i in zip(units, st.idx)], "index": list(st.idx), "jams": j,
             "probability": j / samples, "ci95": [lo95, hi95], "cost_mm": round(cost() * 1e-6, 6),
-            "weights": [round(x, 6) for x in w], "exchanges": exchanges, "jam": st.neg}
+            "weights": [round(x, 6) for x in w], "exchanges": exchanges, "jam": jam,
+            "analytic": {"start": budget * PROB_STEP, "end": st.total() * PROB_STEP}}
