@@ -324,14 +324,17 @@ def autoplay(tmp: Path) -> dict:
                      "threshold_mm": r(pu["threshold_mm"], 3), "p_uniform_pct": pct(uniform["probability"], 2),
                      "p_allocated_pct": pct(pu["probability"], 2), "own": len(own),
                      "own_range_mm": f"{min(own.values()):g}–{max(own.values()):g}" if own else "–",
-                     "p_kit_pct": pct(t["overall"]["probability"], 2), "exchanges": pu["exchanges"]}
+                     "p_kit_pct": pct(t["overall"]["probability"], 2), "exchanges": pu["exchanges"],
+                     "held_out": (f"{pu['held_out']['uniform_jams']} → {pu['held_out']['jams']}"
+                                  if pu.get("held_out") else "–")}
         o = out[name]
         rows.append([f"`{Path(config).name}`" + (" " + " ".join(x for x in extra if not x.startswith("--")) if extra else ""),
                      a["printer"], o["uniform_mm"], f"{o['uniform_play_mm']} → {o['allocated_play_mm']}",
                      f"{o['saving_pct']} % (threshold {o['threshold_mm']} mm)", "yes" if o["adopted"] else "no",
-                     f"{o['p_uniform_pct']} % → {o['p_allocated_pct']} %", f"{o['p_kit_pct']} %"])
+                     f"{o['p_uniform_pct']} % → {o['p_allocated_pct']} %", o["held_out"], f"{o['p_kit_pct']} %"])
     out["table"] = table(["design", "printer", "uniform auto (mm)", "total play uniform → allocated (mm)", "saved",
-                          "adopted", "P(jam), 20,000 fixed prints", "the built kit's `tolerance` (10,000)"], rows)
+                          "adopted", "P(jam), the 20,000 prints auto chooses on",
+                          "jams on 20,000 other prints", "the built kit's `tolerance` (10,000)"], rows)
     return out
 
 
