@@ -99,7 +99,7 @@ def check_meshes(kit: Kit, thetas: np.ndarray, label: str = "motion parameter") 
         a_design = centre_distance(ga, gb)
         names = (c.a, c.b)
         backlash = involute.circumferential_backlash(ga.teeth, gb.teeth, s.module, s.pressure_angle, ga.profile_shift,
-                                                     gb.profile_shift, s.backlash_per_gear, s.backlash_per_gear, a_op)
+                                                     gb.profile_shift, s.backlash_per_gear, gb.system.backlash_per_gear, a_op)
         # the play measured on the outlines: turn b both ways from its assembled phase until it touches
         r_wb = a_op * gb.teeth / (ga.teeth + gb.teeth)
         measured = (_play(pair, P0a, P0b, 1) + _play(pair, P0a, P0b, -1)) * r_wb

@@ -46,8 +46,19 @@ def auto_text(a: dict) -> str:
             f"{a['printer']} at ±{a['accuracy_mm']:g} mm, target {100 * a['target']:g} %, linear study of "
             f"{a['samples']:,} prints, {a.get('credits') or 'gears seated by their meshes'}")
     if len(a["values"]) > 1:
-        line += (f"\n  allocation: the least total play ({a['cost_mm']:g} mm over every mesh's backlash and every "
+        line += (f"\n  allocation: the least total play ({a.get('uniform', a)['cost_mm']:g} mm over every mesh's backlash and every "
                  f"fit's radial gap) among {len(a['frontier'])} pairs that meet the target")
+    pu = a.get("per_unit") or {}
+    if pu.get("adopted"):
+        u = a["uniform"]
+        line += (f"\n  allocated per gear and joint: total play {pu['cost_mm']:.3f} mm against {pu['uniform_cost_mm']:.3f} mm "
+                 f"with one value per key ({pu['saving_mm']:.3f} mm, {pu['saving_pct']:.1f} % less; uniform P(jam) "
+                 f"{100 * u['probability']:.2f} %); the values that differ from the default:")
+        for k, own in pu["own"].items():
+            line += (f"\n    {a['labels'][k]}: default {a['values'][k]:g} mm; "
+                     + ", ".join(f"{n} {v:g}" for n, v in own.items()))
+    elif pu.get("why"):
+        line += f"\n  one value per key (not allocated per gear and joint: {pu['why']})"
     if a.get("buys"):
         line += "\n  one more step would save: " + ", ".join(
             f"{k} {n} of {a['samples']:,} prints" for k, n in a["buys"].items())

@@ -40,7 +40,8 @@ import numpy as np
 from ..core.quantise import quantise
 from .tolerance import AUTO_SAMPLES, GROUPS, MarginModel, wilson
 
-__all__ = ["Knob", "least_allocation", "play_weight", "hole_slope"]
+__all__ = ["Knob", "least_allocation", "play_weight", "hole_slope", "Unit", "allocate_units", "gear_slopes",
+           "joint_slopes"]
 
 PLAY_WHATS = ("backlash", "radial gap")  # the margins that are the kit's play (a mesh's, a running fit's)
 
@@ -82,8 +83,9 @@ def play_weight(model: MarginModel, slope: np.ndarray) -> float:
     return float(np.asarray(slope)[sel].sum())
 
 
-def _draws(model: MarginModel, samples: int, seed: int) -> np.ndarray:
-    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(0,)))
+def _draws(model: MarginModel, samples: int, seed: int, chunk: int = 0) -> np.ndarray:
+    """The margins of ``samples`` prints: chunk ``chunk`` of the stream ``run_chunk`` draws."""
+    rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(chunk,)))
     z = rng.standard_normal((samples, len(model.features)))
     return model.nominal[None, :] + z @ (model.coeff * model.sigma[:, None])
 
@@ -166,3 +168,198 @@ def least_allocation(model: MarginModel, knobs: list[Knob], target: float, sampl
             "cost_mm": round(cost(best), 6), "weights": {k.key: round(w, 6) for k, w in zip(knobs, weights)},
             "frontier": [{k.key: k.value(i) for k, i in zip(knobs, idx)} for idx in frontier],
             "buys": buys, "groups": groups, "units": units}
+
+
+# --- per-unit allocation --------------------------------------------------------------------------
+
+EXCHANGE_TRIES = 4  # raises tried (best first) each time the descent stalls
+MAX_ROUNDS = 2000  # moves at most (a bound, never reached on the shipped designs)
+
+
+@dataclass(frozen=True)
+class Unit:
+    """One gear's backlash or one running fit's clearance as its own number: ``key`` (the design key
+    it belongs to), ``name`` (the gear or the part that runs in the bore), ``start`` (mm the model's
+    kit was built with), ``slope`` (K,) mm of margin per mm, ``step`` and the grid ``least`` …
+    ``most`` (in steps)."""
+
+    key: str
+    name: str
+    start: float
+    slope: np.ndarray
+    step: float
+    least: int
+    most: int
+
+    def value(self, i: int) -> float:
+        return round(i * self.step, 6)
+
+
+def _natural(name: str) -> tuple:
+    """G2 before G10: the letters, then the number."""
+    head = name.rstrip("0123456789")
+    tail = name[len(head):]
+    return (head, int(tail) if tail else -1, name)
+
+
+def gear_slopes(model: MarginModel) -> dict[str, np.ndarray]:
+    """{gear: (K,) mm of margin per mm of *that gear's* backlash}: a mesh ``a/b``'s backlash margin
+    moves by half its ``per_backlash`` per mm of either gear's thinning (each gear's thinning Δ opens
+    Δ·cos α/cos α_w on the operating circle); in natural name order."""
+    out: dict[str, np.ndarray] = {}
+    for k, m in enumerate(model.margins):
+        if m.group != "mesh" or m.what != "backlash" or not m.per_backlash:
+            continue
+        for gear in m.unit.split("/"):
+            out.setdefault(gear, np.zeros(len(model.margins)))[k] += m.per_backlash / 2
+    return {g: out[g] for g in sorted(out, key=_natural)}
+
+
+def joint_slopes(model: MarginModel) -> dict[str, np.ndarray]:
+    """{part: (K,) mm of margin per mm of *its* running fit's diametral clearance}: the coefficients
+    of its bore (the ``hole`` feature of its ``joint`` margin ``"<part> on <carrier>"``): the fit's gap
+    and every mesh its play is credited to; in natural name order."""
+    holes = np.array([f.kind == "hole" for f in model.features], dtype=bool)
+    out: dict[str, np.ndarray] = {}
+    for k, m in enumerate(model.margins):
+        if m.group != "joint" or m.what != "radial gap":
+            continue
+        rows = np.flatnonzero(holes & (model.coeff[:, k] != 0.0))
+        if len(rows) != 1:
+            continue
+        name = m.unit.split(" on ")[0]
+        if name not in out:
+            out[name] = model.coeff[rows[0]].copy()
+    return {n: out[n] for n in sorted(out, key=_natural)}
+
+
+PROB_STEP = 1e-12  # the resolution probabilities are compared at (quantised: the same choice on any machine)
+
+
+class _Analytic:
+    """Each margin's exact probability of going below 0 in the linear model (a margin is normal:
+    mean the nominal moved by the units' values, σ from its features' spreads), at the current
+    values; the kit's is taken as their sum (the union bound: exact for rare jams that do not
+    coincide, above it otherwise), so no print's luck steers the allocation."""
+
+    def __init__(self, model: MarginModel, units: list[Unit], idx: list[int]):
+        self.units, self.idx = units, list(idx)
+        self.S = np.array([u.slope for u in units])  # (U, K)
+        self.starts = np.array([u.start for u in units])
+        self.sd = np.sqrt(((model.coeff * model.sigma[:, None]) ** 2).sum(axis=0))
+        self.nominal = model.nominal
+        self.cols = [np.flatnonzero(u.slope != 0.0) for u in units]
+        self.moving = np.flatnonzero((self.S != 0.0).any(axis=0) & (self.sd > 0))
+        self.p = self._p(self.idx, self.moving)
+
+    def _values(self, idx) -> np.ndarray:
+        return np.array([u.value(i) for u, i in zip(self.units, idx)])
+
+    def _p(self, idx, cols) -> np.ndarray:
+        mu = self.nominal[cols] + (self._values(idx) - self.starts) @ self.S[:, cols]
+        return np.array([0.5 * math.erfc(m / (s * math.sqrt(2.0))) for m, s in zip(mu, self.sd[cols])])
+
+    def total(self, p=None) -> int:
+        return quantise(float(np.sum(self.p if p is None else p)), PROB_STEP)
+
+    def trial(self, i: int, d: int) -> int:
+        """The kit's probability (quantised) with unit i moved ``d`` steps."""
+        idx = list(self.idx)
+        idx[i] += d
+        p = self.p.copy()
+        cols = np.intersect1d(self.cols[i], self.moving)
+        where = np.searchsorted(self.moving, cols)
+        p[where] = self._p(idx, cols)
+        return self.total(p)
+
+    def move(self, i: int, d: int) -> None:
+        self.idx[i] += d
+        cols = np.intersect1d(self.cols[i], self.moving)
+        self.p[np.searchsorted(self.moving, cols)] = self._p(self.idx, cols)
+
+
+def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samples: int = AUTO_SAMPLES,
+                   seed: int = 0) -> dict:
+    """Each unit its own value (on its grid), from ``start`` (grid indices, the uniform choice): the
+    least total play Σ weight_i · value_i (weight: the play margins a unit opens per mm,
+    ``play_weight``) whose probability of a jam (``_Analytic``: each margin's exact normal tail,
+    summed) is no more than at ``start``.
+
+    Deterministic greedy: **descent** — lower by one step the unit that saves most play per
+    probability it adds (a step that adds none first, the largest saving first), while the
+    probability stays within the start's; when none can be lowered, **exchange** — raise by one step
+    a unit that lowers the probability (the most per mm of play first; at most ``EXCHANGE_TRIES``
+    of them), hold it, and descend again; keep the exchange when the total play fell, else undo it
+    and try the next; stop when none helps. Costs and probabilities are compared quantised
+    (``core.quantise``: 1e-6 mm, ``PROB_STEP``), ratios exactly (fractions of those integers); ties go
+    to the unit with the larger value, then the earlier unit (the ``units`` order: each key's units
+    in natural name order). The result counts the jams at the values among the ``samples`` fixed
+    prints (seed, chunk 0: ``least_allocation``'s) and gives ``jam`` (N, K): which margins of which
+    prints are below 0."""
+    from fractions import Fraction
+
+    st = _Analytic(model, units, start)
+    budget = st.total()
+    w = [play_weight(model, u.slope) for u in units]
+    save = [quantise(wi * u.step) for wi, u in zip(w, units)]  # play one step of each unit opens, in 1e-6 mm
+
+    def cost() -> int:
+        return sum(quantise(wi * u.value(i)) for wi, u, i in zip(w, units, st.idx))
+
+    def descend(hold: int | None) -> int:
+        moves = 0
+        while moves < MAX_ROUNDS:
+            best, key = None, None
+            now = st.total()
+            for i, u in enumerate(units):
+                if i == hold or st.idx[i] <= u.least or save[i] <= 0:
+                    continue
+                p = st.trial(i, -1)
+                if p > budget:
+                    continue
+                added = p - now
+                k = (0, -save[i], -st.idx[i] * save[i], i) if added <= 0 else \
+                    (1, -Fraction(save[i], added), -st.idx[i] * save[i], i)
+                if key is None or k < key:
+                    best, key = i, k
+            if best is None:
+                return moves
+            st.move(best, -1)
+            moves += 1
+        return moves
+
+    descend(None)
+    exchanges = 0
+    for _ in range(MAX_ROUNDS):
+        now, p0 = cost(), st.total()
+        gains = []
+        for i, u in enumerate(units):
+            if st.idx[i] >= u.most or save[i] <= 0:
+                continue
+            gain = p0 - st.trial(i, +1)
+            if gain > 0:
+                gains.append((-Fraction(gain, save[i]), i))
+        kept = False
+        for _, i in sorted(gains)[:EXCHANGE_TRIES]:
+            before = list(st.idx)
+            st.move(i, +1)
+            descend(i)
+            if cost() < now:
+                kept = True
+                exchanges += 1
+                break
+            for n in range(len(units)):  # undo: back to the values before the raise
+                if st.idx[n] != before[n]:
+                    st.move(n, before[n] - st.idx[n])
+        if not kept:
+            break
+        descend(None)
+    S = np.array([u.slope for u in units])
+    starts = np.array([u.start for u in units])
+    jam = (_draws(model, samples, seed) + (st._values(st.idx) - starts) @ S) < 0.0
+    j = int(jam.any(axis=1).sum())
+    lo95, hi95 = wilson(j, samples)
+    return {"values": [u.value(i) for u, i in zip(units, st.idx)], "index": list(st.idx), "jams": j,
+            "probability": j / samples, "ci95": [lo95, hi95], "cost_mm": round(cost() * 1e-6, 6),
+            "weights": [round(x, 6) for x in w], "exchanges": exchanges, "jam": jam,
+            "analytic": {"start": budget * PROB_STEP, "end": st.total() * PROB_STEP}}

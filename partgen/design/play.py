@@ -66,7 +66,7 @@ def _mesh(g1, g2, a: float) -> tuple[float, float, float]:
     pitch radius (mm) and cos α_w of a pair at centre distance a."""
     s = g1.system
     j = involute.circumferential_backlash(g1.teeth, g2.teeth, s.module, s.pressure_angle, g1.profile_shift,
-                                          g2.profile_shift, s.backlash_per_gear, s.backlash_per_gear, a)
+                                          g2.profile_shift, s.backlash_per_gear, g2.system.backlash_per_gear, a)
     rb = (g1.teeth + g2.teeth) * s.module / 2 * math.cos(s.pressure_angle)
     return j, a * g2.teeth / (g1.teeth + g2.teeth), rb / a
 

@@ -151,7 +151,7 @@ def mesh_breaches(g1: GearSpec, g2: GearSpec, a: float, rules: GearRules, names:
                               f"(< {need:.3f} mm, {rules.tip_root_coeff:g} module)", c, need))
     try:
         j = involute.circumferential_backlash(g1.teeth, g2.teeth, s.module, s.pressure_angle, g1.profile_shift,
-                                              g2.profile_shift, s.backlash_per_gear, s.backlash_per_gear, a)
+                                              g2.profile_shift, s.backlash_per_gear, g2.system.backlash_per_gear, a)
     except ValueError:
         j = -math.inf
     if j < -BACKLASH_TOL:  # a designed backlash of 0 is met (exact arithmetic leaves ±1e-12 mm)

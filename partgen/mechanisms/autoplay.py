@@ -17,8 +17,13 @@ tolerance model of that check (gears seated by their meshes, docs/tolerance.md) 
 and each knob's slopes; ``design.allocate.least_allocation`` picks the values on 20,000 fixed prints
 (seed 0): one knob by bisection, two by the staircase of least pairs, the least total play (the sum
 of every mesh's backlash and every fit's radial gap the values open) with ties to the smaller value
-of the earlier key. The design is then loaded with those numbers in place of ``auto``: the kit, its
-pinned design.yaml and every check see the numbers. A value that does not build (thinner teeth than
+of the earlier key. Then, where the kind takes a value per gear and per joint (its schema's
+``PER_UNIT_PLAY``), each gear's backlash and each running fit's clearance are allocated on their own
+from the uniform choice (``design.allocate.allocate_units``: the least total play with a model
+probability of a jam no more than the uniform choice's; ``_per_unit``), and the allocation is adopted when it saves more than one grid
+step of the coarsest key over the whole kit: those keys become mappings ``{default: the uniform
+value, <gear or joint>: its own}``. The design is then loaded with those numbers in place of
+``auto``: the kit, its pinned design.yaml and every check see the numbers. A value that does not build (thinner teeth than
 a rule allows, a bore that leaves no wall) caps its knob at the most that builds, and the search runs
 again. One search per design per process, and the choice is remembered between runs
 (``core.cache``: under the resolved design at the start values, the design and printer documents,
@@ -30,6 +35,7 @@ from __future__ import annotations
 
 import copy
 import json
+import math
 import pickle
 from dataclasses import replace
 from pathlib import Path
@@ -39,8 +45,10 @@ import numpy as np
 from ..config.loader import LoadedDesign
 from ..config.schema import AUTO_PLAY_START_MM
 from ..core.cache import recall, remember
+from ..core.quantise import quantise
 from ..core.protocol import tolerance_hook
-from ..design.allocate import Knob, hole_slope, least_allocation
+from ..design.allocate import (Knob, Unit, _draws, allocate_units, gear_slopes, hole_slope, joint_slopes,
+                               least_allocation, play_weight)
 from ..design.tolerance import AUTO_SAMPLES, PLAY_MAX_MM, PLAY_STEP_MM
 from ..errors import ConfigError, DesignError
 
@@ -57,6 +65,7 @@ ROLES = {  # role -> (label, start, step, most)
     "running": ("running clearance, diametral", AUTO_RUNNING_START_MM, RUNNING_STEP_MM, RUNNING_MAX_MM),
 }
 _DONE: dict = {}
+HELD_OUT = 7  # the chunk index of other prints an allocation's jams are reported on (the choice: chunk 0)
 
 
 def _data(raw: LoadedDesign) -> dict:
@@ -83,14 +92,16 @@ def wants_auto(raw: LoadedDesign) -> bool:
     return bool(auto_keys(raw))
 
 
-def _with(raw: LoadedDesign, values: dict[str, float]) -> LoadedDesign:
+def _with(raw: LoadedDesign, values: dict) -> LoadedDesign:
+    """The design with each key set to its number, or to its mapping {default: mm, <name>: mm}."""
     data = copy.deepcopy(_data(raw))
     for key, value in values.items():
         *path, last = key.split(".")
         node = data
         for part in path:
             node = node.setdefault(part, {})
-        node[last] = round(float(value), 6)
+        node[last] = ({k: round(float(v), 6) for k, v in value.items()} if isinstance(value, dict)
+                      else round(float(value), 6))
     return replace(raw, data=data, design=type(raw.design).model_validate(data))
 
 
@@ -171,10 +182,18 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         most[k] = lo
         got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
     values = got["values"]
+    per_unit = _per_unit(raw, mech, model, keys, got, most)
+    design_values = dict(values)
+    if per_unit["adopted"]:
+        for k, own in per_unit["own"].items():
+            design_values[k] = {"default": values[k], **own}
     alloc = {"key": ", ".join(keys), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
              "meshes": sum(m.what == "backlash" for m in model.margins),
              "joints": sum(m.group == "joint" and m.what == "radial gap" for m in model.margins),
-             "limited_by": limits or None, "credits": model.credits}
+             "limited_by": limits or None, "credits": model.credits, "per_unit": per_unit}
+    if per_unit["adopted"]:  # the kit is built with the allocation: its figures are the headline
+        alloc["uniform"] = {k: got[k] for k in ("jams", "probability", "ci95", "cost_mm")}
+        alloc.update({k: per_unit[k] for k in ("jams", "probability", "ci95", "cost_mm", "units", "groups")})
     if ".".join(KEY) in values:  # the name the backlash alone had (tests, --json readers)
         alloc["backlash_per_gear_mm"] = values[".".join(KEY)]
     try:
@@ -182,6 +201,79 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     except (TypeError, ValueError):
         pass  # not JSON: not remembered
     else:
-        remember("auto-play", what, {"values": values, "allocation": alloc})
-    _DONE[key] = (values, alloc)
-    return _with(raw, values), alloc
+        remember("auto-play", what, {"values": design_values, "allocation": alloc})
+    _DONE[key] = (design_values, alloc)
+    return _with(raw, design_values), alloc
+
+
+def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict) -> dict:
+    """Each gear its own backlash and each running fit its own clearance, from the uniform choice
+    ``got`` (``design.allocate.allocate_units``, on the same prints and grids, each unit at most its
+    key's most), with a probability of a jam (each margin's exact normal tail, summed) no more than
+    at the uniform values: play is moved between the units by the model itself, not by the luck of
+    any prints; adopted when it saves more play than one grid step of the coarsest key over the
+    whole kit (the uniform choice's own resolution), meets the target on the same 20,000 prints as
+    the uniform choice, and builds without a warning the uniform kit has not. The result says why not
+    when it is not."""
+    per = getattr(type(raw.design), "PER_UNIT_PLAY", frozenset())
+    out = {"adopted": False, "why": None, "threshold": "more than one grid step of the coarsest key over the kit"}
+    if not per or not set(keys) <= set(per):
+        out["why"] = f"a {mech.kind} design takes one value per key"
+        return out
+    units, start = [], []
+    for k, role in keys.items():
+        label, s0, step, top = ROLES[role]
+        slopes = gear_slopes(model) if role == "backlash" else joint_slopes(model)
+        if not slopes or not np.allclose(sum(slopes.values()), _slope(role, model), atol=1e-12):
+            out["why"] = f"{k}: the model's margins do not split into one per {'gear' if role == 'backlash' else 'joint'}"
+            return out
+        i0 = int(round(got["values"][k] / step))
+        for name, sl in slopes.items():
+            units.append(Unit(k, name, s0, sl, step, 1, most.get(k, int(round(top / step)))))
+            start.append(i0)
+    res = allocate_units(model, units, start, got["samples"], got["seed"])
+    uniform = sum(play_weight(model, u.slope) * u.value(i) for u, i in zip(units, start))
+    saving = uniform - res["cost_mm"]
+    need = max(got["weights"][k] * ROLES[r][2] for k, r in keys.items())
+    own = {k: {u.name: v for u, v in zip(units, res["values"]) if u.key == k and v != got["values"][k]} for k in keys}
+    out.update({"analytic": res["analytic"], "own": {k: o for k, o in own.items() if o}, "uniform_cost_mm": round(uniform, 6),
+                "saving_mm": round(saving, 6), "saving_pct": round(100 * saving / uniform, 3) if uniform else 0.0,
+                "threshold_mm": round(need, 6), "exchanges": res["exchanges"],
+                **{k: res[k] for k in ("jams", "probability", "ci95", "cost_mm")}})
+    jam = res["jam"]
+    uidx = model.unit_index
+    per_u = [(int(jam[:, uidx == u].any(axis=1).sum()), u) for u in range(len(model.units))]
+    out["units"] = [{"unit": model.units[u], "group": model.margins[int(np.flatnonzero(uidx == u)[0])].group, "jams": n}
+                    for n, u in sorted(per_u, key=lambda t: (-t[0], t[1])) if n][:5]
+    out["values_by_unit"] = {u.key + ":" + u.name: v for u, v in zip(units, res["values"])}
+    out["groups"] = {g: int(jam[:, [m.group == g for m in model.margins]].any(axis=1).sum())
+                     for g in got["groups"]}
+    if quantise(saving) <= quantise(need):
+        out["why"] = (f"it saves {saving:.3g} mm of {uniform:.3g} mm, not more than one grid step of the coarsest "
+                      f"key over the kit ({need:.3g} mm): the uniform values are kept")
+        return out
+    # reported: the jams on prints neither choice was made on (another 20,000: seed, chunk HELD_OUT)
+    held = _draws(model, got["samples"], got["seed"], HELD_OUT)
+    S = np.array([u.slope for u in units])
+    starts = np.array([u.start for u in units])
+
+    def held_jams(vals) -> int:
+        return int(((held + (np.asarray(vals) - starts) @ S) < 0.0).any(axis=1).sum())
+    out["held_out"] = {"prints": got["samples"], "uniform_jams": held_jams([u.value(i) for u, i in zip(units, start)]),
+                       "jams": held_jams(res["values"])}
+    allowed = int(math.floor(got["target"] * got["samples"] + 1e-9)) if got["reached"] else got["jams"]
+    if res["jams"] > allowed:
+        out["why"] = (f"it jams {res['jams']} of the {got['samples']:,} prints, more than the target's {allowed}: "
+                      "the uniform values are kept")
+        return out
+    design = {k: ({"default": got["values"][k], **own[k]} if own[k] else got["values"][k]) for k in keys}
+    problem = _builds(raw, mech, design)
+    if problem is None:
+        warn = lambda v: sum(f.severity == "warn" for f in mech.findings(mech.resolve(_with(raw, v))))  # noqa: E731
+        if warn(design) > warn(got["values"]):
+            problem = "a gear's own backlash breaks a rule the uniform kit meets (tip width)"
+    if problem is not None:
+        out["why"] = f"the allocation does not build ({problem}): the uniform values are kept"
+        return out
+    out["adopted"] = True
+    return out

@@ -126,13 +126,15 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
     jn = params.joints
     ra = jn.axle_diameter / 2
     bore_r = params.bore / 2
+    # a boss or collar keeps its wall round the largest running bore a joint has of its own
+    wall_r = max([bore_r] + [params.bore_of(name) / 2 for name, _ in jn.running_by])
     post = DFit(ra, jn.press_clearance)
     # G's D-boss: the wall under its flat is half the hub wall (the flat cuts FLAT_DEPTH deep)
     # (at least the printer's thinnest wall, with the bore polygon's excess over its circle)
-    boss = DFit(bore_r + P.FLAT_DEPTH + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL),
+    boss = DFit(wall_r + P.FLAT_DEPTH + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL),
                 jn.press_clearance)
     # a collar keeps at least the boss's wall around the bore
-    collar_min = bore_r + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL)
+    collar_min = wall_r + max(params.hub_wall / 2, params.printer.min_wall + 2 * FEATURE_TOL)
     rb = boss.radius
     n = len(mech.chain.links)
     clock = clockings(mech)
@@ -149,7 +151,7 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
     # gears
     def fixed(name: str, spec):
         collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
-        solid = P.fixed_gear(spec, f, bore_r, (collar_r, g), boss, t + g, clock[name], tol)
+        solid = P.fixed_gear(spec, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, clock[name], tol)
         add(Part(name, "gear", solid, gear=spec, clocking=clock[name], bores=(hub_bore,)))
 
     # G's round bore runs through teeth, collar and boss: the post comes up into it from below
@@ -157,13 +159,23 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
     gear_bores = {"D": Bore("axle", (0.0, 0.0, 0.0), UP, post.pin_diameter, f),
                   "round": Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f)}
 
-    holes = {"D": post.hole(FEATURE_TOL), "round": P.disc(bore_r, FEATURE_TOL, hole=True)}
+    holes = {"D": post.hole(FEATURE_TOL)}
+
+    def hole_of(name: str, hole: str):
+        """A part's bore: the D-hole, or the round running bore of its own joint's clearance."""
+        if hole == "D":
+            return holes["D"]
+        r = params.bore_of(name) / 2
+        if r not in holes:
+            holes[r] = P.disc(r, FEATURE_TOL, hole=True)
+        return holes[r]
+
     bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
 
     def loose(name: str, spec, hole: str):
-        key = (spec, hole)
+        key = (spec, hole, params.bore_of(name) if hole == "round" else None)
         if key not in bored:
-            bored[key] = P.bored_gear(spec, f, holes[hole])
+            bored[key] = P.bored_gear(spec, f, hole_of(name, hole))
         add(Part(name, "gear", bored[key], gear=spec, bores=(gear_bores[hole],)))
 
     fixed("G1", mech.G1)
@@ -179,19 +191,19 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
         for name, pulley, hole in ((f"D{s.j}", s.D, "D"), (f"G{s.j + 1}", s.G, "round")):
             section = P.pulley_outline(pulley.teeth, prof.pitch, prof.pitch_line_offset, prof.groove_depth,
                                        prof.groove_radius, FEATURE_TOL)
-            body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f, holes[hole],
-                                 FEATURE_TOL)
+            body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f,
+                                 hole_of(name, hole), FEATURE_TOL)
             if name[0] == "G":
                 collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
-                body = P.fixed_hub(body, f, bore_r, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
+                body = P.fixed_hub(body, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
             add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
                                                  ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4))),
                      bores=(hub_bore if name[0] == "G" else gear_bores[hole],)))
         if s.tensioner is not None:
-            r = s.tensioner_radius
-            roller = P.prisms([(P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
-                               (P.annulus(bore_r, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
-                               (P.annulus(bore_r, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
+            r, rt = s.tensioner_radius, params.bore_of(f"T{s.j}") / 2
+            roller = P.prisms([(P.annulus(rt, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
+                               (P.annulus(rt, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
+                               (P.annulus(rt, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
             add(Part(f"T{s.j}", "idler", roller, bores=(gear_bores["round"],)))
         _, path = belt_path_of(s, prof)
         z0 = bs.flange_thickness + 0.1
@@ -249,11 +261,12 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
                           f"(needs {crank_depth + 3.0:g} mm)", "base.leg_height_mm")
     outline = P.hull_of_discs([((0.0, 0.0), ra + params.boss_wall + 4.0), ((dx, dy), rb + params.boss_wall)]
                               + [(c, LEG_R + 2.0) for c in legs], FEATURE_TOL)
-    holes = [P.disc(bore_r, FEATURE_TOL, (dx, dy), hole=True)] + [P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c, hole=True)
+    holes = [P.disc(params.bore_of("drive_axle") / 2, FEATURE_TOL, (dx, dy), hole=True)] + [
+        P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c, hole=True)
                                                                    for c in legs]
     outline = outline.difference(P.union2d(holes))
     top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
-    feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(bore_r, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+    feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(params.bore_of("drive_axle") / 2, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
     ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
     base_bores = (Bore("drive axle", (dx, dy, g), DOWN, 2 * ra, g + bt),) + tuple(
         Bore(f"leg{i + 1} peg", (c[0], c[1], -bt), UP, 2 * ra, bt) for i, c in enumerate(legs))
@@ -281,14 +294,15 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
 def _contacts(mech: ChainDesign, params: KitParams, st: Stack, n_legs: int) -> tuple[Contact, ...]:
     """Every pair of parts the design means to touch: fits on axles, D-fits, thrust faces, meshes."""
     g, f, t = st.gap, st.face, st.plate
-    run, press = params.joints.running_clearance / 2, params.joints.press_clearance / 2
+    press = params.joints.press_clearance / 2
+    run_of = lambda name: params.joints.running_of(name) / 2  # noqa: E731  (radial)
     bt = params.base_thickness
     n = len(mech.chain.links)
     body = lambda j: (st.layer(j), st.layer(j) + f)  # noqa: E731
     plate = lambda j: (st.plate_z(j), st.plate_z(j) + t)  # noqa: E731
-    out = [Contact("G1", "base", "running", body(0), run), Contact("G1", "B1", "press", plate(1), press),
+    out = [Contact("G1", "base", "running", body(0), run_of("G1")), Contact("G1", "B1", "press", plate(1), press),
            Contact("G1", "drive", "mesh"), Contact("drive", "drive_axle", "press", body(0), press),
-           Contact("drive", "base", "thrust"), Contact("drive_axle", "base", "running", (-bt, 0.0), run),
+           Contact("drive", "base", "thrust"), Contact("drive_axle", "base", "running", (-bt, 0.0), run_of("drive_axle")),
            Contact("crank", "drive_axle", "press", (-bt - g - 6.0, -bt - g), press),
            Contact("pen_holder", f"B{n}", "press", plate(n), press)]
     out += [Contact(f"leg{i + 1}", "base", "press", (-bt, 0.0), press) for i in range(n_legs)]
@@ -296,18 +310,19 @@ def _contacts(mech: ChainDesign, params: KitParams, st: Stack, n_legs: int) -> t
         j = s.j
         carrier = "base" if j == 1 else f"B{j - 1}"
         out += [Contact(f"D{j}", carrier, "press", body(j), press), Contact(f"D{j}", f"G{j}", "thrust"),
-                Contact(f"M{j}", f"B{j}", "running", body(j), run), Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
+                Contact(f"M{j}", f"B{j}", "running", body(j), run_of(f"M{j}")),
+                Contact(f"G{j + 1}", f"B{j}", "running", body(j), run_of(f"G{j + 1}")),
                 Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
                 Contact(f"D{j}", f"M{j}", "mesh"), Contact(f"M{j}", f"G{j + 1}", "mesh")]
     for s in mech.belt_stages:
         j = s.j
         carrier = "base" if j == 1 else f"B{j - 1}"
         out += [Contact(f"D{j}", carrier, "press", body(j), press), Contact(f"D{j}", f"G{j}", "thrust"),
-                Contact(f"G{j + 1}", f"B{j}", "running", body(j), run),
+                Contact(f"G{j + 1}", f"B{j}", "running", body(j), run_of(f"G{j + 1}")),
                 Contact(f"G{j + 1}", f"B{j + 1}", "press", plate(j + 1), press),
                 Contact(f"belt{j}", f"D{j}", "belt"), Contact(f"belt{j}", f"G{j + 1}", "belt")]
         if s.tensioner is not None:
-            out += [Contact(f"T{j}", f"B{j}", "running", body(j), run), Contact(f"belt{j}", f"T{j}", "belt")]
+            out += [Contact(f"T{j}", f"B{j}", "running", body(j), run_of(f"T{j}")), Contact(f"belt{j}", f"T{j}", "belt")]
     return tuple(out)
 
 

@@ -21,6 +21,11 @@ class Joints:
     running_clearance: float
     press_clearance: float
     axial_gap: float
+    running_by: tuple[tuple[str, float], ...] = ()  # (part that turns in the bore, its own running clearance)
+
+    def running_of(self, name: str) -> float:
+        """The running clearance of the joint ``name`` turns in (its own, else the default), diametral."""
+        return dict(self.running_by).get(name, self.running_clearance)
 
 
 @dataclass(frozen=True)
@@ -45,6 +50,11 @@ class KitParams:
     drive_teeth: int
     drive_angle: float
     checks: CheckSettings = CheckSettings()
+    backlash_by: tuple[tuple[str, float], ...] = ()  # (gear, its own backlash per gear, mm): the others the system's
+
+    def bore_of(self, name: str) -> float:
+        """Running bore (mm) of the joint the part ``name`` turns in: its own clearance, else the default."""
+        return self.joints.axle_diameter + self.joints.running_of(name)
 
     @property
     def bore(self) -> float:

@@ -202,13 +202,17 @@ def resolve(loaded: LoadedDesign, drawing_scale: float | None = None) -> tuple[M
         chain, fc, scale, dropped = _chain(loaded)
         _sizes(loaded, chain)
     g = d.gears
+    backlash = g.backlash_per_gear_mm
+    own_backlash = () if not isinstance(backlash, dict) else tuple(
+        (k, float(v)) for k, v in backlash.items() if k != "default")
+    backlash = backlash["default"] if isinstance(backlash, dict) else backlash
     system = ToothSystem(
         module=1.0 if g.module_mm == "auto" else g.module_mm,  # auto: chosen in resolve_spec
         pressure_angle=math.radians(g.pressure_angle_deg),
         addendum_coeff=g.addendum_coeff,
         dedendum_coeff=g.dedendum_coeff,
         cutter_tip_coeff=g.cutter_tip_radius_coeff,
-        backlash_per_gear=AUTO_PLAY_START_MM if g.backlash_per_gear_mm == "auto" else g.backlash_per_gear_mm,
+        backlash_per_gear=AUTO_PLAY_START_MM if backlash == "auto" else backlash,
         profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
         chord_tolerance=g.chord_tolerance_mm,
     )
@@ -232,7 +236,8 @@ def resolve(loaded: LoadedDesign, drawing_scale: float | None = None) -> tuple[M
         plate_thickness=d.plates.thickness_mm,
         boss_wall=d.plates.boss_wall_mm,
         hub_wall=g.hub_wall_mm,
-        joints=Joints(j.axle_diameter_mm, _fit(loaded, "running"), _fit(loaded, "press_fit"), j.axial_gap_mm),
+        joints=Joints(j.axle_diameter_mm, _fit(loaded, "running"), _fit(loaded, "press_fit"), j.axial_gap_mm,
+                      _own_running(j)),
         base_thickness=d.base.thickness_mm,
         leg_height=d.base.leg_height_mm,
         crank_radius=d.base.crank_radius_mm,
@@ -245,8 +250,62 @@ def resolve(loaded: LoadedDesign, drawing_scale: float | None = None) -> tuple[M
         drive_angle=math.radians(d.drive.angle_deg),
         checks=CheckSettings(d.checks.samples, d.checks.interference_tolerance_mm3, d.checks.min_clearance_mm,
                              d.checks.min_contact_ratio, d.checks.min_tip_width_roads, d.checks.plate_margin_mm),
+        backlash_by=own_backlash,
     )
     return inputs, params
+
+
+BACKLASH_KEY, RUNNING_KEY = "gears.backlash_per_gear_mm", "joints.running_clearance_diametral_mm"
+
+
+def _own_running(j) -> tuple[tuple[str, float], ...]:
+    """The joints named in a running-clearance mapping, with their own clearance (diametral)."""
+    d = j.running_clearance_diametral_mm
+    return () if not isinstance(d, dict) else tuple((k, float(v)) for k, v in d.items() if k != "default")
+
+
+def running_joints(mech: ChainDesign) -> list[str]:
+    """The parts that turn in a running fit (a joint's name in a running-clearance mapping)."""
+    out = ["G1", "drive_axle"]
+    for s in mech.stages:
+        out += [f"M{s.j}", f"G{s.j + 1}"]
+    for s in mech.belt_stages:
+        out += [f"G{s.j + 1}"] + ([f"T{s.j}"] if s.tensioner is not None else [])
+    return out
+
+
+def _own_play(loaded: LoadedDesign, mech: ChainDesign, params: KitParams) -> ChainDesign:
+    """The mechanism with each gear named in ``gears.backlash_per_gear_mm``'s mapping thinned by its
+    own backlash (the teeth, centre distances and clockings do not depend on it); names checked,
+    both mappings'; the rules a gear's own backlash breaks (tip width) become design warnings."""
+    from ...design.drivetrain import design_finding
+    from ...design.rules import gear_breaches, gear_rules
+
+    gears = dict(mech.gears)
+    for key, own, names in ((BACKLASH_KEY, params.backlash_by, list(gears)),
+                            (RUNNING_KEY, params.joints.running_by, running_joints(mech))):
+        for name, _ in own:
+            if name not in names:
+                what = "gear" if key == BACKLASH_KEY else "running joint (named by the part that turns in it)"
+                raise ConfigError(loaded.path, f"{key}.{name}", f"the kit has no {what} {name!r}: it has "
+                                  f"{', '.join(names)}")
+    if not params.backlash_by:
+        return mech
+    own = dict(params.backlash_by)
+
+    def thin(name: str, gear):
+        if name not in own:
+            return gear
+        return replace(gear, system=replace(gear.system, backlash_per_gear=own[name]))
+
+    stages = tuple(replace(s, D=thin(f"D{s.j}", s.D), M=thin(f"M{s.j}", s.M), G=thin(f"G{s.j + 1}", s.G))
+                   for s in mech.stages)
+    out = replace(mech, stages=stages, G1=thin("G1", mech.G1), drive=thin("drive", mech.drive))
+    rules = gear_rules(params)
+    found = [design_finding("warn", b.rule, f"{name} (its own backlash {own[name]:g} mm): {b.message}",
+                            f"{BACKLASH_KEY}.{name}")
+             for name, gear in out.gears if name in own for b in gear_breaches(gear, rules, name)]
+    return replace(out, findings=(*out.findings, *found)) if found else out
 
 
 TOOTH_KEYS = {"cutter_tip_coeff": "gears.cutter_tip_radius_coeff", "addendum_coeff": "gears.addendum_coeff",
@@ -344,7 +403,7 @@ def resolve_spec(loaded: LoadedDesign, drawing_scale: float | None = None, advis
             key = "curve"
         problem = first.problem + (f" (tried {len(orders)} orders of the links)" if len(orders) > 1 else "")
         raise ConfigError(loaded.path, key, problem) from None
-    return ChainSpec(loaded.path, mech, params, loaded.printer_path)
+    return ChainSpec(loaded.path, _own_play(loaded, mech, params), params, loaded.printer_path)
 
 
 def load(path) -> ChainSpec:

@@ -4,13 +4,34 @@ from __future__ import annotations
 
 from typing import Annotated, ClassVar, Literal
 
-from pydantic import Field, model_validator
+from pydantic import AfterValidator, Field, model_validator
 
 from ...config.schema import DesignHeader, ToleranceTarget
 from ...config.schema import (MAX, Coeff, Finite, Gap, Length, NonNeg, Pos, Ratio, Strict,
                               Teeth)
 
 __all__ = ["Design"]
+
+
+def _has_default(m: dict) -> dict:
+    if "default" not in m:
+        raise ValueError("a mapping of play per gear or joint needs 'default' (the value of every one not named)")
+    return m
+
+
+def _defaults(data, *keys: str):
+    """A play mapping without ``default`` named on its key (before the union's alternatives speak)."""
+    if isinstance(data, dict):
+        for k in keys:
+            if isinstance(data.get(k), dict) and "default" not in data[k]:
+                raise ValueError(f"[{k}.default] required key is missing: a mapping of play per gear or joint "
+                                 "gives the value of every one it does not name")
+    return data
+
+
+# a play per gear or joint: {default: mm, <gear or part name>: mm, …} (what auto's allocation pins)
+PerUnit = Annotated[dict[Annotated[str, Field(min_length=1, max_length=40)], Gap],
+                    Field(min_length=1, max_length=512), AfterValidator(_has_default)]
 
 
 class Polar(Strict):
@@ -180,10 +201,11 @@ class Gears(Strict):
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1, le=1.5)] = "auto"
     """Profile shift coefficient (× module) of every gear; auto: the smallest shift that avoids undercut (0 at and
     above the undercut limit)."""
-    backlash_per_gear_mm: Gap | Literal["auto"] = 0.05
+    backlash_per_gear_mm: Gap | Literal["auto"] | PerUnit = 0.05
     """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so a mesh at its
     zero-backlash centre distance has the sum of both as circumferential backlash; auto: the least that meets
-    tolerance.max_jam_probability on the printer."""
+    tolerance.max_jam_probability on the printer (allocated per gear where that saves play); a mapping
+    {default: mm, G5: mm, M4: mm, …}: each named gear (drive, G1, D_j, M_j, G_j) its own, the others the default."""
     face_width_mm: Length
     """Gear thickness (a gear layer's height)."""
     chord_tolerance_mm: Annotated[float, Field(ge=1e-4, le=0.1)] = 0.001
@@ -197,6 +219,11 @@ class Gears(Strict):
     idler_reach_mm: Gap = 1.0
     """Least margin by which the idler's two centre distances exceed the link's length (Eq 13 with margin; 0: D, M
     and G in one line): what teeth: auto chooses by, and what build warns about."""
+
+    @model_validator(mode="before")
+    @classmethod
+    def _default_given(cls, data):
+        return _defaults(data, "backlash_per_gear_mm")
 
 
 class Drive(Strict):
@@ -219,10 +246,12 @@ class Joints(Strict):
     running_clearance_radial_mm: Finite | None = None
     """Radial running clearance of the revolute joints, bore minus axle on each side (give this or
     running_clearance_diametral_mm)."""
-    running_clearance_diametral_mm: Finite | Literal["printer", "auto"] | None = None
+    running_clearance_diametral_mm: Finite | Literal["printer", "auto"] | PerUnit | None = None
     """Diametral running clearance of the revolute joints, bore minus axle; printer: the printer profile's measured
-    running fit; auto: the least that (with the backlash) meets tolerance.max_jam_probability on the printer (give
-    this or running_clearance_radial_mm)."""
+    running fit; auto: the least that (with the backlash) meets tolerance.max_jam_probability on the printer
+    (allocated per joint where that saves play); a mapping {default: mm, G5: mm, M4: mm, …}: each named joint (by
+    the part that turns in it: G1, drive_axle, M_j, G_j, T_j) its own, the others the default (give this or
+    running_clearance_radial_mm)."""
     press_fit_clearance_radial_mm: Finite | None = None
     """Radial clearance of the D-fits (parts pressed on a D-flat), hole minus pin on each side; negative:
     interference (give this or press_fit_clearance_diametral_mm)."""
@@ -231,6 +260,11 @@ class Joints(Strict):
     measured press fit (give this or press_fit_clearance_radial_mm)."""
     axial_gap_mm: Length = 0.5
     """Gap between parts that turn against each other along an axle (the thrust rings' height)."""
+
+    @model_validator(mode="before")
+    @classmethod
+    def _default_given(cls, data):
+        return _defaults(data, "running_clearance_diametral_mm")
 
     @model_validator(mode="after")
     def _one_each(self):
@@ -242,8 +276,10 @@ class Joints(Strict):
 
     @property
     def running_diametral(self) -> float:
+        """The running clearance (diametral) of every joint not named in a mapping."""
         r = self.running_clearance_radial_mm
-        return 2 * r if r is not None else self.running_clearance_diametral_mm
+        d = self.running_clearance_diametral_mm
+        return 2 * r if r is not None else (d["default"] if isinstance(d, dict) else d)
 
     @property
     def press_fit_diametral(self) -> float:
@@ -326,6 +362,7 @@ class Checks(Strict):
 class Design(DesignHeader):
     AUTO_PLAY: ClassVar[dict] = {"gears.backlash_per_gear_mm": "backlash",
                                  "joints.running_clearance_diametral_mm": "running"}  # mechanisms.autoplay
+    PER_UNIT_PLAY: ClassVar[frozenset] = frozenset(AUTO_PLAY)  # the keys that take {default: mm, <name>: mm}
     kind: Literal["gear_chain"]
     """The mechanism this file designs: `gear_chain` selects these keys."""
     curve: Curve | None = None

@@ -41,6 +41,7 @@ def exact_shared(kit, result, model, seated: bool = True, angles: int = ANGLES) 
     return {"p1": shapely.to_wkb(_outline(kit, "gear1")), "p2": shapely.to_wkb(_outline(kit, "gear2")),
             "a": float(s.centre_distance), "z1": s.gear1.teeth, "z2": s.gear2.teeth, "module": s.gear1.system.module,
             "phase2": float(s.phase2), "gap": float(result.figures["radial_gap_mm"]),
+            "gaps": [float(x) for x in result.figures.get("radial_gaps_mm", [result.figures["radial_gap_mm"]] * 2)],
             "features": [f.name for f in model.features], "sigma": model.sigma.tolist(),
             "pos_sigma": model.accuracy_mm / 3 / math.sqrt(2), "seated": bool(seated), "angles": int(angles)}
 
@@ -53,7 +54,8 @@ def exact_print(shared: dict, seed: int, index: int) -> dict:
     d = dict(zip(shared["features"], rng.standard_normal(len(shared["features"])) * np.asarray(shared["sigma"])))
     dy1, dy2 = rng.standard_normal(2) * shared["pos_sigma"]
     why = None
-    plays = [shared["gap"] + 0.5 * d.get(f"{g} bore", 0.0) - 0.5 * d.get(f"base {g} post", 0.0) for g in ("gear1", "gear2")]
+    plays = [gap + 0.5 * d.get(f"{g} bore", 0.0) - 0.5 * d.get(f"base {g} post", 0.0)
+             for g, gap in zip(("gear1", "gear2"), shared.get("gaps", [shared["gap"]] * 2))]
     if min(plays) < 0:
         why = "a bore grips its post"
     else:

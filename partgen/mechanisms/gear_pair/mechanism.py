@@ -133,7 +133,8 @@ class GearPair:
         if backlash.min() <= 0:
             res.add(Finding("mesh", "fail", "the teeth jam: no backlash left", ("gear1", "gear2"),
                             float(thetas[np.argmin(backlash)]), float(backlash.min()), "mm", key="gears.backlash_per_gear_mm"))
-        radial = spec.bore_radius - spec.axle_radius
+        gaps = [spec.bore_of(g) - spec.axle_radius for g in ("gear1", "gear2")]
+        radial = min(gaps)
         if radial <= 0:
             res.add(Finding("fit", "fail", f"the bores grip their posts ({radial:.3f} mm radial gap)", ("base", "gear1"),
                             value=radial, unit="mm", key="axles.clearance_diametral_mm"))
@@ -141,9 +142,10 @@ class GearPair:
         res.figures.update(samples=len(thetas), output_turns=1, centre_distance_mm=round(spec.centre_distance, 6),
                            backlash_mm={"min": float(backlash.min()), "max": float(backlash.max()),
                                         "mean": float(backlash.mean()),
-                                        "designed": 2 * spec.gear1.system.backlash_per_gear},
+                                        "designed": spec.gear1.system.backlash_per_gear + spec.gear2.system.backlash_per_gear},
                            transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
-                           max_overlap_mm2=float(play["overlap_mm2"].max()), radial_gap_mm=float(radial))
+                           max_overlap_mm2=float(play["overlap_mm2"].max()), radial_gap_mm=float(radial),
+                           radial_gaps_mm=[float(x) for x in gaps])
         from ...checks.bed import bed_findings
         from ...checks.bores import bore_findings
 

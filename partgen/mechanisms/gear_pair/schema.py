@@ -4,11 +4,30 @@ from __future__ import annotations
 
 from typing import Annotated, ClassVar, Literal
 
-from pydantic import Field
+from pydantic import AfterValidator, Field, model_validator
 
 from ...config.schema import DesignHeader, ToleranceTarget, Gap, Length, Strict, Teeth
 
 __all__ = ["GearPairDesign"]
+
+
+def _has_default(m: dict) -> dict:
+    if "default" not in m:
+        raise ValueError("a mapping of play per gear needs 'default' (the value of a gear it does not name)")
+    return m
+
+
+# a play per gear: {default: mm, gear1: mm, gear2: mm} (what auto's allocation pins)
+PerGear = Annotated[dict[Annotated[str, Field(min_length=1, max_length=40)], Gap], Field(min_length=1, max_length=3),
+                    AfterValidator(_has_default)]
+
+
+def _defaults(data, key: str):
+    """A play mapping without ``default`` named on its key (before the union's alternatives speak)."""
+    if isinstance(data, dict) and isinstance(data.get(key), dict) and "default" not in data[key]:
+        raise ValueError(f"[{key}.default] required key is missing: a mapping of play per gear gives the value of a "
+                         "gear it does not name")
+    return data
 
 
 class PairGears(Strict):
@@ -20,10 +39,11 @@ class PairGears(Strict):
     """Teeth of [driver (input), driven (output)]; the ratio is driven / driver."""
     face_width_mm: Length = 8.0
     """Gear thickness along the axles."""
-    backlash_per_gear_mm: Gap | Literal["auto"] = 0.1
+    backlash_per_gear_mm: Gap | Literal["auto"] | PerGear = 0.1
     """Per gear: each tooth is thinned by this arc length at its reference pitch circle, so the pair at its
     zero-backlash centre distance has the sum of both as circumferential backlash; auto: the least that meets
-    tolerance.max_jam_probability on the printer."""
+    tolerance.max_jam_probability on the printer (allocated per gear where that saves play); a mapping {default: mm,
+    gear1: mm, gear2: mm}: each named gear its own."""
     profile_shift: Literal["auto"] | Annotated[float, Field(ge=-1.0, le=1.0)] = "auto"
     """Profile shift coefficient (× module) of both gears; auto: the smallest shift that avoids undercut (0 at and
     above the undercut limit). The posts sit at the shifted pair's zero-backlash centre distance."""
@@ -31,16 +51,27 @@ class PairGears(Strict):
     """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
     smaller is smoother and heavier STLs."""
 
+    @model_validator(mode="before")
+    @classmethod
+    def _default_given(cls, data):
+        return _defaults(data, "backlash_per_gear_mm")
+
 
 class Axles(Strict):
     diameter_mm: Length = 8.0
     """Diameter of the two posts standing on the base, each gear turning on one."""
-    clearance_diametral_mm: Gap | Literal["printer", "auto"] = 0.4
+    clearance_diametral_mm: Gap | Literal["printer", "auto"] | PerGear = 0.4
     """Diametral running clearance, a gear's bore minus its post; printer: the printer profile's measured running fit
     (fits.running_clearance_diametral_mm); auto: the least that (with the backlash) meets
-    tolerance.max_jam_probability on the printer."""
+    tolerance.max_jam_probability on the printer (allocated per gear where that saves play); a mapping {default: mm,
+    gear1: mm, gear2: mm}: each named gear's bore its own."""
     axial_gap_mm: Gap = 0.5
     """Gap between the base plate and a gear's face."""
+
+    @model_validator(mode="before")
+    @classmethod
+    def _default_given(cls, data):
+        return _defaults(data, "clearance_diametral_mm")
 
 
 class PairBase(Strict):
@@ -60,6 +91,7 @@ class PairChecks(Strict):
 class GearPairDesign(DesignHeader):
     AUTO_PLAY: ClassVar[dict] = {"gears.backlash_per_gear_mm": "backlash",
                                  "axles.clearance_diametral_mm": "running"}  # mechanisms.autoplay
+    PER_UNIT_PLAY: ClassVar[frozenset] = frozenset(AUTO_PLAY)  # the keys that take {default: mm, gear1: mm, gear2: mm}
     kind: Literal["gear_pair"]
     """The mechanism this file designs: `gear_pair` selects these keys."""
     gears: PairGears

@@ -38,8 +38,9 @@ def tolerance_model(kit: PairKit, result: Result, accuracy_mm: float, seated: bo
     s = kit.spec
     b = ModelBuilder()
     gap = float(result.figures["radial_gap_mm"])
+    gaps = result.figures.get("radial_gaps_mm", [gap, gap])  # each gear's own (its own clearance)
     plays = []
-    for gear in ("gear1", "gear2"):
+    for gear, gap in zip(("gear1", "gear2"), gaps):
         terms = {(f"{gear} bore", "hole", gear): 0.5, (f"base {gear} post", "pin", "base"): -0.5}
         b.add(Margin(f"{gear} on its post", "joint", "radial gap", gap, "base"), terms)
         plays.append((1.0 if seated else 0.0, Play(gap, terms)))
