@@ -15,6 +15,8 @@ from typing import Callable
 
 import numpy as np
 
+from .contact import free_turn
+
 from ..core.transforms import pose_z
 from ..geometry.measure import intersection
 
@@ -61,10 +63,7 @@ def contact_angles(near: Callable, thetas, reach: float, guess: float, tol: floa
                 lo, hi = hi, reach
                 if vol(sign * hi) <= VOLUME_EPS:
                     lo = hi  # no contact within reach: a gap that wide is reported as it
-            while hi - lo > tol:
-                mid = (lo + hi) / 2
-                lo, hi = (lo, mid) if vol(sign * mid) > VOLUME_EPS else (mid, hi)
-            out[key][k] = sign * lo
+            out[key][k] = sign * free_turn(lambda d: vol(sign * d) > VOLUME_EPS, lo, hi, tol)
     return out
 
 

@@ -13,6 +13,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Point, Polygon, box
 
+from .contact import free_turn
 from ..core.protocol import CheckedKit as Kit  # what the shared checks read of a kit
 from ..design import involute, rules
 from ..design.gearing import centre_distance
@@ -68,13 +69,8 @@ def _play(pair: _Pair, Ta, Tb, direction: int) -> float:
     if pair.overlap(Ta, Tb, near)[0] > 1e-9:
         return 0.0
     reach = pair.gb.tip_radius
-    while (hi - lo) * reach > PLAY_RESOLUTION:
-        mid = (lo + hi) / 2
-        if pair.overlap(Ta, turn_about(Tb, (0.0, 0.0, 1.0), (cb[0], cb[1], 0.0), direction * mid), near)[0] > 1e-9:
-            hi = mid
-        else:
-            lo = mid
-    return lo
+    return free_turn(lambda d: pair.overlap(Ta, turn_about(Tb, (0.0, 0.0, 1.0), (cb[0], cb[1], 0.0), direction * d),
+                                            near)[0] > 1e-9, lo, hi, PLAY_RESOLUTION / reach)
 
 
 def check_meshes(kit: Kit, thetas: np.ndarray, label: str = "motion parameter") -> tuple[list[Finding], list[dict]]:
