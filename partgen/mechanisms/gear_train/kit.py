@@ -34,15 +34,13 @@ from ...errors import ConfigError, DesignError
 from ...geometry.gear import gear_body, helical_body
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, shaft as shaft_solid
-from ...geometry.hubs import hex_nut, key_ridge, keyway_hole, nut_trap, radial_cylinder, block, square_nut
 from ...geometry.solid import prisms, slab, union
-from .hubs import Hub, HubError, plan_hub, turning
-from .hubs import sizes_within as hub_sizes_within
+from .common.hubs import Hub, HubError, plan_hub, turning
+from .common.hubs import sizes_within as hub_sizes_within
+from .common.kit import FEATURE_TOL, hub_cutters, hub_hole, screw_and_nut, turning_shaft
 
-__all__ = ["TrainGear", "Shaft", "Mesh", "TrainSpec", "TrainKit", "resolve_train", "build_train", "hub_cutters",
-           "nut_and_rod", "screw_and_nut", "hub_hole", "turning_shaft", "hub_contacts"]
+__all__ = ["TrainGear", "Shaft", "Mesh", "TrainSpec", "TrainKit", "resolve_train", "build_train"]
 
-FEATURE_TOL = 0.01  # mm: chord tolerance of round features that are not gear flanks
 FLAT_DEPTH = 1.0  # mm: a D's flat sits this far inside its circle (geometry.parts.FLAT_DEPTH)
 
 
@@ -81,8 +79,6 @@ class Mesh:
     driven: str
     direction: float
     centre_distance: float
-
-
 
 
 @dataclass(frozen=True)
@@ -378,21 +374,6 @@ def _part_span(s: TrainSpec, sh: Shaft) -> tuple[float, float]:
     return (s.gap if lo > s.gap + 1e-9 else lo), s.layer_z(sh.layers[1]) + s.face_width
 
 
-def hub_cutters(h: Hub, z0: float, outer: float, running: float, turn: float = 0.0) -> list:
-    """What a part loses for hub ``h``'s hardware, the part's bottom face at ``z0`` (its local frame, the
-    bore on z): a nut trap sunk into that face, or a set screw's radial hole (along local +x turned by
-    ``turn`` rad about z, out to ``outer``) and its nut's slot open at that face."""
-    if h.kind == "hex":
-        return [nut_trap(h.pocket_s, z0, h.pocket_depth)]
-    if h.kind == "set_screw":
-        zc = z0 + h.screw_z
-        cut = [radial_cylinder((h.thread + running) / 2, 0.0, outer, zc, FEATURE_TOL),
-               block(h.slot_x0, h.slot_x0 + h.pocket_depth, -h.pocket_s / 2, h.pocket_s / 2, z0 - 1.0,
-                     zc + h.pocket_s / 2)]
-        return [c.rotate((0.0, 0.0, math.degrees(turn))) for c in cut] if turn else cut
-    return []
-
-
 def _cutters(s: TrainSpec, sh: Shaft) -> list:
     """What the gear part loses for its hardware: a nut trap in its bottom face, or a set screw's
     radial hole (on local +x) and its nut's slot open at the bottom face."""
@@ -437,85 +418,6 @@ def _shaft_parts(s: TrainSpec, sh: Shaft, z_lo: float, z_hi: float) -> list[Part
     if sh.bore == "round":
         return [Part(name, "axle", shaft_solid(fit, [("round", -t, top)], tol))]
     return turning_shaft(h, name, f"nut{sh.index}", -t, top, (z_lo, z_hi))
-
-
-def nut_and_rod(h: Hub, rod: str, nut: str, z0: float, z1: float, nut_z: float) -> list[Part]:
-    """A hex bore's bought parts: the threaded rod from z0 to z1 and its ISO 4032 nut from ``nut_z`` up
-    (the rod and the nut's bore one polygon, so they touch exactly)."""
-    thread = circle(h.radius, FEATURE_TOL)
-    return [Part(rod, "threaded rod", slab(thread, z0, z1), printed=False,
-                 info=(("item", f"{h.nut} threaded rod (DIN 976), cut to length"), ("thread", h.nut),
-                       ("diameter_mm", h.thread), ("length_mm", round(z1 - z0, 1)))),
-            Part(nut, "nut", hex_nut(h.nut_s, h.nut_m, thread, nut_z), printed=False,
-                 info=(("item", f"{h.nut} hex nut (ISO 4032)"), ("thread", h.nut), ("across_flats_mm", h.nut_s),
-                       ("height_mm", h.nut_m)))]
-
-
-def screw_and_nut(h: Hub, screw: str, nut: str, z0: float, turn: float = 0.0) -> list[Part]:
-    """A set screw's bought parts in the frame of the part it holds (its bottom face at ``z0``): the
-    screw from the shaft's surface out along local +x turned by ``turn`` rad, its square nut in the slot."""
-    zc = z0 + h.screw_z
-    x0 = h.slot_x0 + (h.pocket_depth - h.nut_m) / 2
-    a = radial_cylinder(h.thread / 2, h.radius, h.radius + h.screw_length, zc, FEATURE_TOL)
-    b = square_nut(h.nut_s, h.nut_m, h.thread, x0, zc, FEATURE_TOL)
-    if turn:
-        a, b = (x.rotate((0.0, 0.0, math.degrees(turn))) for x in (a, b))
-    return [Part(screw, "set screw", a, printed=False,
-                 info=(("item", f"{h.nut} × {h.screw_length:g} set screw, flat point (ISO 4026)"), ("thread", h.nut),
-                       ("length_mm", h.screw_length))),
-            Part(nut, "nut", b, printed=False,
-                 info=(("item", f"{h.nut} square nut (DIN 562)"), ("thread", h.nut), ("width_mm", h.nut_s),
-                       ("height_mm", h.nut_m)))]
-
-
-def hub_hole(h: Hub, press: float, tol: float):
-    """The bore outline (a hole) of a part held by hub ``h`` on a turning shaft: a D (its flat on local
-    -y), round with its keyway on local +y, or round (a nut trap's rod, a set screw's shaft)."""
-    if h.kind == "d_flat":
-        return DFit(h.radius, press).hole(tol)
-    if h.kind == "keyway":
-        return keyway_hole(h.bore, h.key_half, h.key_floor, tol)
-    return circle(h.bore, tol, hole=True)
-
-
-def hubbed_gear(gear: GearSpec, face: float, h: Hub, press: float, running: float, hub_radius: float,
-                z_thrust: float, z_gear: float, raised: bool, tol: float):
-    """A turning shaft's gear (the planetary's sun, the rack's pinion) with its bore feature: the gear
-    at ``z_gear``; when ``raised``, its set screw's hub from its thrust ring (``z_thrust``) up to the
-    gear; the hub's cutters (screw hole, nut slot or trap) taken out."""
-    hole = hub_hole(h, press, max(tol, 0.005))
-    solid = gear_body(gear, face, hole, z_gear)
-    if raised:  # its set screw's hub, from its thrust ring up to the gear
-        solid = union([solid, prisms([(circle(hub_radius, FEATURE_TOL).difference(hole), z_thrust, z_gear)])])
-    cut = hub_cutters(h, z_thrust, hub_radius + 1.0, running)
-    return solid - union(cut) if cut else solid
-
-
-def turning_shaft(h: Hub, name: str, nut: str, z0: float, z1: float, fit: tuple[float, float]) -> list[Part]:
-    """A turning shaft from z0 to z1 for hub ``h`` (not ``d_flat``, whose D the caller lays out), the part
-    it holds spanning ``fit``: printed round (a set screw's), round with its integral key along ``fit``
-    (a keyway's), or a bought threaded rod and its nut at the part's bottom face (a nut trap's)."""
-    tol = FEATURE_TOL
-    round_ = shaft_solid(DFit(h.radius, 0.0), [("round", z0, z1)], tol)
-    if h.kind == "keyway":
-        return [Part(name, "axle", union([round_, key_ridge(h.key_top_half, h.key_top, *fit)]))]
-    if h.kind == "set_screw":
-        return [Part(name, "axle", round_)]
-    if h.kind == "hex":
-        return nut_and_rod(h, name, nut, z0, z1, fit[0])
-    raise ValueError(f"no turning shaft for a {h.kind!r} bore")
-
-
-def hub_contacts(h: Hub, part: str, shaft: str, nut: str, screw: str, seat: str | None) -> list[Contact]:
-    """The bought hardware's contacts with the part it holds and its shaft: a nut in its trap on its
-    rod (resting on ``seat`` when the part stands on one), a set screw in its hole through its nut."""
-    if h.kind == "hex":
-        return [Contact(nut, part, "thrust"), Contact(nut, shaft, "thrust")] + \
-            ([Contact(nut, seat, "thrust")] if seat else [])
-    if h.kind == "set_screw":
-        return [Contact(nut, part, "thrust"), Contact(screw, part, "thrust"), Contact(screw, nut, "thrust"),
-                Contact(screw, shaft, "thrust")]
-    return []
 
 
 def _set_screw_parts(s: TrainSpec, sh: Shaft) -> list[Part]:

@@ -21,7 +21,9 @@ from .checks import check_train, sample_thetas
 from .kit import TrainKit, TrainSpec, build_train, resolve_train
 from .motion import turn_train
 from .planetary import PlanetaryKit, PlanetarySpec, build_planetary, check_planetary, resolve_planetary, turn_planetary
-from .rack import RackKit, RackSpec, build_rack, check_rack, resolve_rack, turn_rack
+from .rack import SLICE as _RACK
+from .rack.kit import RackKit
+from .rack.resolve import RackSpec
 from .schema import GearTrainDesign
 from ...export.report import figure_png
 
@@ -48,7 +50,6 @@ def _hub_summary(h, running: float) -> dict:
     return {"set_screw": {"screw": f"{h.nut} × {h.screw_length:g} ISO 4026", "hole_diameter_mm": _r6(h.thread + running),
                           "axis_above_part_bottom_mm": _r6(h.screw_z), "nut": f"{h.nut} DIN 562",
                           "slot_mm": [_r6(h.pocket_depth), _r6(h.pocket_s)], "slot_inner_face_mm": _r6(h.slot_x0)}}
-
 
 
 def _lost_motion_html(lm: dict, spec) -> str:
@@ -82,13 +83,13 @@ class GearTrain:
 
     def resolve(self, raw: LoadedDesign) -> TrainSpec | PlanetarySpec:
         if raw.design.rack is not None:
-            return resolve_rack(raw)
+            return _RACK.resolve(raw)
         return resolve_planetary(raw) if raw.design.planetary is not None else resolve_train(raw)
 
     def build(self, spec: TrainSpec | PlanetarySpec, progress=None) -> TrainKit | PlanetaryKit:
         try:
             if isinstance(spec, RackSpec):
-                return build_rack(spec, progress)
+                return _RACK.build(spec, progress)
             return build_planetary(spec, progress) if isinstance(spec, PlanetarySpec) else build_train(spec, progress)
         except ValueError as e:
             raise DesignError(str(e), "shafts.diameter_mm") from None
@@ -127,7 +128,7 @@ class GearTrain:
         if isinstance(spec, PlanetarySpec):
             return _planetary_summary(spec)
         if isinstance(spec, RackSpec):
-            return _rack_summary(spec)
+            return _RACK.design_summary(spec)
         r = spec.ratio
         out = {"name": spec.name, "kind": self.kind, "module_mm": spec.system.module,
                "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)), "face_width_mm": spec.face_width,
@@ -167,7 +168,7 @@ class GearTrain:
         if isinstance(spec, PlanetarySpec):
             return check_planetary(kit, samples, progress)
         if isinstance(spec, RackSpec):
-            return check_rack(kit, samples, progress)
+            return _RACK.check(kit, samples, progress)
         return check_train(kit, samples, progress)
 
     def tolerance_model(self, spec, kit, result: Result, accuracy_mm: float, seated: bool = True):
@@ -182,7 +183,7 @@ class GearTrain:
         """Output angle against input angle over one turn of the output, from the printed outlines (a
         rack's travel against the pinion's angle over its travel)."""
         if isinstance(spec, RackSpec):
-            return self._trace_rack(spec, kit, samples, out)
+            return _RACK.trace(spec, kit, samples, out)
         if isinstance(spec, PlanetarySpec):
             thetas = np.linspace(0.0, spec.output_turn, samples or 90, endpoint=False)
             turned = turn_planetary(kit, thetas)
@@ -212,26 +213,6 @@ class GearTrain:
             files = ["transmission.png"]
         return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_arcmin", "backlash_arcmin"),
                      data=np.column_stack([thetas, drive, te, lash]))
-
-    def _trace_rack(self, spec: RackSpec, kit: RackKit, samples: int | None, out: Path | None) -> Trace:
-        thetas = np.linspace(*spec.thetas_range, samples or 90)
-        turned = turn_rack(kit, thetas)
-        te = (turned["drive"] - turned["nominal"]) * 1000  # µm
-        lash = turned["coast"] - turned["drive"]
-        slope = np.polyfit(thetas, turned["drive"], 1)[0]
-        stats = {"kind": self.kind, "samples": len(thetas), "output": "rack",
-                 "ratio_design": spec.pinion.pitch_radius, "ratio_measured": float(slope),
-                 "ratio_unit": "mm of rack per rad of pinion",
-                 "ratio_measured_error": float(slope / spec.pinion.pitch_radius - 1),
-                 "transmission_error_um": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
-                 "backlash_mm": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
-                 "max_overlap_mm2": float(turned["overlap_mm2"].max())}
-        files = []
-        if out is not None:
-            (out / "transmission.png").write_bytes(_figure(spec, thetas, te, lash * 1000, "µm at the rack"))
-            files = ["transmission.png"]
-        return Trace(stats, files, columns=("input_rad", "output_mm", "transmission_error_um", "backlash_mm"),
-                     data=np.column_stack([thetas, turned["drive"], te, lash]))
 
     def csv(self, trace: Trace) -> str:
         return self.csv_header + "".join(f"{a:.9f},{b:.9f},{c:.6f},{d:.6f}\n" for a, b, c, d in trace.data)
@@ -419,21 +400,6 @@ def _planetary_summary(spec: PlanetarySpec) -> dict:
         out["bores"] = {end: {"bore": h.kind, **_hub_summary(h, spec.running)}
                         for end, h in zip(("input", "output"), spec.hubs)}
         out.update(hub_height_mm=_r6(spec.base), sun_hub_diameter_mm=_r6(2 * spec.hub_radius))
-    return out
-
-
-def _rack_summary(spec: RackSpec) -> dict:
-    p = spec.pinion
-    out = {"name": spec.name, "kind": "gear_train", "arrangement": "rack and pinion",
-           "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
-           "face_width_mm": spec.face_width, "pinion_teeth": p.teeth, "pinion_profile_shift": _r6(p.profile_shift),
-           "rack_teeth": spec.rack_teeth, "rack_length_mm": _r6(spec.rack_length), "travel_mm": spec.travel,
-           "mm_per_rad": _r6(p.pitch_radius), "pitch_line_y_mm": _r6(spec.pitch_line),
-           "shaft_diameter_mm": 2 * spec.shaft_radius, "printer": spec.printer.name, "material": spec.material,
-           "density_g_cm3": _r6(spec.density * 1000)}
-    if spec.hub is not None:
-        out.update(bore={"bore": spec.hub.kind, **_hub_summary(spec.hub, spec.running)}, hub_height_mm=_r6(spec.base),
-                   hub_diameter_mm=_r6(2 * spec.hub_radius))
     return out
 
 

@@ -46,8 +46,8 @@ from ...geometry.measure import section
 from ...geometry.outline import circle
 from ...geometry.parts import DFit, shaft as shaft_solid
 from ...geometry.solid import prisms, slab, union
-from .hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
-from .kit import (FEATURE_TOL, hub_contacts, hub_cutters, hub_hole, hubbed_gear, screw_and_nut,
+from .common.hubs import DIN562_NUTS, HARDWARE_KEY, Hub, HubError, plan_hub, sizes_within
+from .common.kit import (FEATURE_TOL, hub_contacts, hub_cutters, hub_hole, hubbed_gear, screw_and_nut,
                   turning_shaft)
 
 __all__ = ["PlanetarySpec", "PlanetaryKit", "resolve_planetary", "build_planetary", "check_planetary",

@@ -47,7 +47,8 @@ from ...design.involute import inv, reference_tooth_thickness
 from ...design.tolerance import Margin, MarginModel, ModelBuilder, Play, seat_credit, seat_factor
 from .kit import TrainKit, TrainSpec
 from .planetary import PlanetaryKit, PlanetarySpec
-from .rack import RackKit, RackSpec
+from .rack.kit import RackKit
+from .rack.tolerance import tolerance_model as _rack_model
 
 __all__ = ["tolerance_model", "internal_backlash", "CARRIER_ANGLES"]
 
@@ -321,41 +322,6 @@ def _planetary(kit: PlanetaryKit, result: Result, accuracy_mm: float, seated: bo
 
 
 # ---------------------------------------------------------------------------------------------- rack
-def _rack(kit: RackKit, result: Result, accuracy_mm: float, seated: bool) -> MarginModel:
-    s: RackSpec = kit.params
-    b = ModelBuilder()
-    plays = _fits(b, kit, result)
-    row = result.figures.get("rack_mesh", {})
-    alpha = s.system.pressure_angle
-    # the pinion's axis to the rack's pitch line (along y, the line of centres): the base's shaft hole
-    # to its rail face, less the rack's depth back to pitch line (its back face moves out by half its
-    # outline's deviation); the rack pressed back onto its rail takes the rail's gap
-    rail_gap = s.running / 2
-    da = {(f"frame_bottom rail face y", "position", "frame_bottom"): 1.0,
-          (f"frame_bottom shaft hole y", "position", "frame_bottom"): -1.0,
-          ("rack outline", "outline", "rack"): -0.5}
-    credit = 0.0
-    if seated:
-        credit += rail_gap
-        if plays.get("shaft") is not None:
-            credit += plays["shaft"].nominal
-            for k, v in plays["shaft"].terms.items():
-                _add(da, k, v)
-    # the rack's flanks are straight at α: Δa moves the backlash by 2 tan α · Δa, the teeth by 1/cos α
-    terms = {k: 2 * math.tan(alpha) * v for k, v in da.items()}
-    _add(terms, _tooth("pinion"), -1.0 / math.cos(alpha))
-    _add(terms, _tooth("rack"), -1.0 / math.cos(alpha))
-    lash = row.get("backlash_mm", {})
-    b.add(Margin("pinion/rack", "mesh", "backlash", float(lash.get("min", 0.0)) + 2 * math.tan(alpha) * credit,
-                 "frame", 2.0), terms)
-    for key, value in row.get("tip_root_mm", {}).items():
-        t = dict(da)
-        _add(t, _tooth("pinion"), -0.5)
-        _add(t, _tooth("rack"), -0.5)
-        b.add(Margin("pinion/rack", "mesh", f"tip-root {key.replace('->', '→')}", float(value) + credit,
-                     "frame"), t)
-    _gaps(b, kit, result, {frozenset(("pinion", "rack"))}, lambda name: None)
-    return b.model(accuracy_mm, kit.name, "the pinion's shaft and the rack seated by their mesh" if seated else "the pinion's shaft and the rack centred (no play credited)")
 
 
 def tolerance_model(kit, result: Result, accuracy_mm: float, seated: bool = True) -> MarginModel:
@@ -364,5 +330,5 @@ def tolerance_model(kit, result: Result, accuracy_mm: float, seated: bool = True
     if isinstance(kit, PlanetaryKit):
         return _planetary(kit, result, accuracy_mm, seated)
     if isinstance(kit, RackKit):
-        return _rack(kit, result, accuracy_mm, seated)
+        return _rack_model(kit, result, accuracy_mm, seated)
     return _train(kit, result, accuracy_mm, seated)
