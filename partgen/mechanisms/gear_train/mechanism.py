@@ -20,7 +20,9 @@ from ...geometry.measure import oversize
 from .checks import check_train, sample_thetas
 from .kit import TrainKit, TrainSpec, build_train, resolve_train
 from .motion import turn_train
-from .planetary import PlanetaryKit, PlanetarySpec, build_planetary, check_planetary, resolve_planetary, turn_planetary
+from .planetary import SLICE as _PLANETARY
+from .planetary.kit import PlanetaryKit
+from .planetary.resolve import PlanetarySpec
 from .rack import SLICE as _RACK
 from .rack.kit import RackKit
 from .rack.resolve import RackSpec
@@ -84,13 +86,13 @@ class GearTrain:
     def resolve(self, raw: LoadedDesign) -> TrainSpec | PlanetarySpec:
         if raw.design.rack is not None:
             return _RACK.resolve(raw)
-        return resolve_planetary(raw) if raw.design.planetary is not None else resolve_train(raw)
+        return _PLANETARY.resolve(raw) if raw.design.planetary is not None else resolve_train(raw)
 
     def build(self, spec: TrainSpec | PlanetarySpec, progress=None) -> TrainKit | PlanetaryKit:
         try:
             if isinstance(spec, RackSpec):
                 return _RACK.build(spec, progress)
-            return build_planetary(spec, progress) if isinstance(spec, PlanetarySpec) else build_train(spec, progress)
+            return _PLANETARY.build(spec, progress) if isinstance(spec, PlanetarySpec) else build_train(spec, progress)
         except ValueError as e:
             raise DesignError(str(e), "shafts.diameter_mm") from None
 
@@ -126,7 +128,7 @@ class GearTrain:
 
     def design_summary(self, spec: TrainSpec, kit: TrainKit) -> dict:
         if isinstance(spec, PlanetarySpec):
-            return _planetary_summary(spec)
+            return _PLANETARY.design_summary(spec)
         if isinstance(spec, RackSpec):
             return _RACK.design_summary(spec)
         r = spec.ratio
@@ -166,7 +168,7 @@ class GearTrain:
 
     def check(self, spec: TrainSpec, kit: TrainKit, samples: int | None = None, progress=None) -> Result:
         if isinstance(spec, PlanetarySpec):
-            return check_planetary(kit, samples, progress)
+            return _PLANETARY.check(kit, samples, progress)
         if isinstance(spec, RackSpec):
             return _RACK.check(kit, samples, progress)
         return check_train(kit, samples, progress)
@@ -186,9 +188,8 @@ class GearTrain:
             return _RACK.trace(spec, kit, samples, out)
         if isinstance(spec, PlanetarySpec):
             thetas = np.linspace(0.0, spec.output_turn, samples or 90, endpoint=False)
-            turned = turn_planetary(kit, thetas)
-            drive, nominal, coast = turned["drive"], turned["nominal"], turned["coast"]
-        else:
+            return _PLANETARY.trace(spec, kit, samples, out)
+        if True:
             thetas = sample_thetas(spec, samples or 90)
             turned = turn_train(kit, thetas)
             o = len(spec.shafts) - 1
@@ -378,29 +379,6 @@ class GearTrain:
             return f"planetary set, {spec.teeth.planets} planets, ratio {spec.ratio:.4f}"
         r = spec.ratio
         return f"{len(spec.stages)}-stage gear train, ratio {r.numerator}/{r.denominator}"
-
-
-def _planetary_summary(spec: PlanetarySpec) -> dict:
-    t = spec.teeth
-    out = {"name": spec.name, "kind": "gear_train", "arrangement": "planetary: ring fixed, sun input, carrier output",
-           "module_mm": spec.system.module, "pressure_angle_deg": _r6(math.degrees(spec.system.pressure_angle)),
-           "face_width_mm": spec.face_width, "teeth": {"sun": t.sun, "planet": t.planet, "ring": t.ring},
-           "planets": t.planets, "ratio": f"1 + {t.ring}/{t.sun}", "ratio_value": _r6(t.ratio),
-           "assembly": f"({t.sun} + {t.ring})/{t.planets} = {(t.sun + t.ring) / t.planets:g}",
-           "planet_angles_deg": [_r6(math.degrees(a)) for a in spec.angles],
-           "planet_phases_deg": [_r6(math.degrees(a)) for a in spec.planet_phases],
-           "ring_phase_deg": _r6(math.degrees(spec.ring_phase)), "centre_distance_mm": _r6(spec.centre_distance),
-           "ring_tip_diameter_mm": _r6(2 * (spec.space.root_radius)), "ring_root_diameter_mm": _r6(2 * spec.space.tip_radius),
-           "shaft_diameter_mm": 2 * spec.shaft_radius, "pin_diameter_mm": 2 * spec.pin_radius,
-           "printer": spec.printer.name, "material": spec.material, "density_g_cm3": _r6(spec.density * 1000)}
-    if spec.target_ratio is not None:
-        out["target_ratio"] = spec.target_ratio
-        out["ratio_error"] = _r6(t.ratio / spec.target_ratio - 1)
-    if spec.hubs is not None:
-        out["bores"] = {end: {"bore": h.kind, **_hub_summary(h, spec.running)}
-                        for end, h in zip(("input", "output"), spec.hubs)}
-        out.update(hub_height_mm=_r6(spec.base), sun_hub_diameter_mm=_r6(2 * spec.hub_radius))
-    return out
 
 
 def _figure(spec: TrainSpec, thetas: np.ndarray, te: np.ndarray, lash: np.ndarray, unit: str = "arcmin at the output"

@@ -46,14 +46,13 @@ from ...core.findings import Result
 from ...design.involute import inv, reference_tooth_thickness
 from ...design.tolerance import Margin, MarginModel, ModelBuilder, Play, seat_credit, seat_factor
 from .kit import TrainKit, TrainSpec
-from .planetary import PlanetaryKit, PlanetarySpec
+from .planetary.kit import PlanetaryKit
+from .planetary.tolerance import tolerance_model as _planetary_model
 from .rack.kit import RackKit
 from .rack.tolerance import tolerance_model as _rack_model
 
 __all__ = ["tolerance_model", "internal_backlash", "CARRIER_ANGLES"]
 
-CARRIER_ANGLES = 6  # carrier angles over a turn at which a planet's meshes are taken (the carrier's axis
-#                     may be off the sun's in any direction: each angle's projection is a margin)
 BOUGHT = ("nut", "set screw", "threaded rod")
 
 
@@ -219,106 +218,6 @@ def _train(kit: TrainKit, result: Result, accuracy_mm: float, seated: bool) -> M
 
 
 # ----------------------------------------------------------------------------------------- planetary
-def internal_backlash(planet, space, a: float) -> tuple[float, float]:
-    """(circumferential backlash on the operating pitch circles, mm; working pressure angle α_w, rad)
-    of ``planet`` (a GearSpec) in the ring whose spaces are the teeth of ``space`` (its space gear)
-    at centre distance ``a``: the ring's space width at its operating pitch circle less the planet's
-    tooth thickness at its own (the two circles roll on each other; at the zero-backlash distance
-    with α_w = α it is the planet's thinning plus the ring's)."""
-    z1, z2, m, alpha = planet.teeth, space.teeth, planet.system.module, planet.system.pressure_angle
-    aw = math.acos(min(1.0, m * (z2 - z1) / 2 * math.cos(alpha) / a))
-    rw1, rw2 = a * z1 / (z2 - z1), a * z2 / (z2 - z1)
-    s1 = reference_tooth_thickness(z1, m, alpha, planet.profile_shift, planet.system.backlash_per_gear)
-    sE = reference_tooth_thickness(z2, m, alpha, space.profile_shift, space.system.backlash_per_gear)
-    space_w = 2 * rw2 * (sE / (m * z2) + inv(alpha) - inv(aw))
-    tooth_w = 2 * rw1 * (s1 / (m * z1) + inv(alpha) - inv(aw))
-    return space_w - tooth_w, aw
-
-
-def _rot(a: float) -> np.ndarray:
-    c, sn = math.cos(a), math.sin(a)
-    return np.array([[c, -sn], [sn, c]])
-
-
-def _planetary(kit: PlanetaryKit, result: Result, accuracy_mm: float, seated: bool) -> MarginModel:
-    s: PlanetarySpec = kit.params
-    b = ModelBuilder()
-    plays = _fits(b, kit, result)
-    N = len(s.angles)
-    a = s.centre_distance
-    # the sun pulled outward by each planet, each planet outward by the sun and inward by the ring:
-    # their directions cancel (κ = 0); the carrier is not in a mesh
-    kappa_planet = seat_factor([(1.0, 0.0), (-1.0, 0.0)]) if seated else 0.0
-    kappa_sun = seat_factor([(math.cos(t), math.sin(t)) for t in s.angles]) if seated else 0.0
-    sun_axis = [(_pos("frame_bottom", "input hole"), 1.0)]  # the ring is the bottom plate's reference
-    carrier_axis = [(_pos("frame_top", "output hole"), 1.0), (_pos("frame_top", "register"), 1.0)]
-    rows = {tuple(r["pair"]): r for r in result.figures.get("meshes", [])}
-    j_pr, aw_r = internal_backlash(s.planet, s.space, a)
-    internal = result.figures.get("internal_mesh", {}).get("tip_root_mm", {})
-    alpha = s.system.pressure_angle
-    meshing = set()
-    for i, t0 in enumerate(s.angles):
-        planet = f"planet{i}"
-        meshing |= {frozenset(("sun", planet)), frozenset((planet, "frame_bottom"))}
-        pin = _pos("carrier", f"pin{i}")
-        row = rows.get(("sun", planet))
-        p_play = plays.get(planet)
-        for k in range(CARRIER_ANGLES):
-            c = 2 * math.pi * k / CARRIER_ANGLES
-            u_local = np.array([math.cos(t0), math.sin(t0)])  # the planet's radial direction on the carrier
-            u = _rot(c) @ u_local  # and in the world at carrier angle c
-            tag = f" @{round(math.degrees(c))}°"
-            da: dict = {}  # the planet's centre from the ring's (and the sun's) centre, along u
-            _project(da, pin, u_local)
-            _project_axis(da, carrier_axis, u)
-            d_sun = dict(da)
-            _project_axis(d_sun, sun_axis, u, -1.0)
-            if row is not None:
-                plays_sp = [(kappa_planet, p_play)] if p_play is not None else []
-                if plays.get("shaft_in") is not None:
-                    plays_sp.append((kappa_sun, plays["shaft_in"]))
-                _external(b, f"sun/{planet}", planet, row, s.sun, s.planet, ("sun", planet), d_sun,
-                          seat_credit(plays_sp), tag)
-            # planet in the ring: a larger centre distance takes the planet deeper (signs turn over)
-            credit, cterms = seat_credit([(kappa_planet, p_play)] if p_play is not None else [])
-            pos = {key: -v for key, v in da.items()}
-            for key, v in cterms.items():
-                _add(pos, key, v)
-            terms = {key: 2 * math.tan(aw_r) * v for key, v in pos.items()}
-            _add(terms, _tooth(planet), -1.0 / math.cos(aw_r))
-            _add(terms, _tooth("frame_bottom"), -1.0 / math.cos(aw_r))
-            unit = f"{planet}/ring"
-            b.add(Margin(unit, "mesh", f"backlash{tag}", j_pr + 2 * math.tan(aw_r) * credit, "frame",
-                         2 * math.cos(alpha) / math.cos(aw_r)), terms)
-            for key, value in internal.items():
-                tt = dict(pos)
-                _add(tt, _tooth(planet), -0.5)
-                _add(tt, _tooth("frame_bottom"), -0.5)
-                b.add(Margin(unit, "mesh", f"tip-root {key.replace('->', '→')}{tag}", float(value) + credit,
-                             "frame"), tt)
-        # assembly with printed teeth: the pin's tangential error turns the planet on the ring and
-        # moves its sun-side flank by twice it; both meshes' backlash must take it
-        if row is not None:
-            tangent = np.array([-math.sin(t0), math.cos(t0)])
-            aw_s = math.acos(min(1.0, (s.sun.pitch_radius + s.planet.pitch_radius) * math.cos(alpha) / a))
-            both = float(row["backlash_mm"]) + j_pr
-            for sign in (1.0, -1.0):
-                terms = {}
-                _project(terms, pin, tangent, -2.0 * sign)
-                _add(terms, _tooth("sun"), -1.0 / math.cos(aw_s))
-                _add(terms, _tooth(planet), -1.0 / math.cos(aw_s) - 1.0 / math.cos(aw_r))
-                _add(terms, _tooth("frame_bottom"), -1.0 / math.cos(aw_r))
-                b.add(Margin(f"{planet} assembly", "mesh", f"phase {'+' if sign > 0 else '−'}", both, "carrier",
-                             2 * math.cos(alpha) / math.cos(aw_s) + 2 * math.cos(alpha) / math.cos(aw_r)), terms)
-
-    def axis_of(name: str):
-        if name in ("sun", "shaft_in"):
-            return np.zeros(2), sun_axis
-        if name in ("carrier", "shaft_out"):
-            return np.zeros(2), carrier_axis
-        return None
-    _gaps(b, kit, result, meshing, axis_of)
-    return b.model(accuracy_mm, kit.name, "planets and sun get no play (their meshes push both ways); the carrier and shafts centred" if seated else "every gear and shaft centred in its bores (no play credited)")
 
 
 # ---------------------------------------------------------------------------------------------- rack
@@ -328,7 +227,7 @@ def tolerance_model(kit, result: Result, accuracy_mm: float, seated: bool = True
     """The margins of ``result`` (the nominal check of ``kit``) for a printer accuracy of ± ``accuracy_mm``
     (``seated``: bodies where their meshes push them in their bores; otherwise centred)."""
     if isinstance(kit, PlanetaryKit):
-        return _planetary(kit, result, accuracy_mm, seated)
+        return _planetary_model(kit, result, accuracy_mm, seated)
     if isinstance(kit, RackKit):
         return _rack_model(kit, result, accuracy_mm, seated)
     return _train(kit, result, accuracy_mm, seated)
