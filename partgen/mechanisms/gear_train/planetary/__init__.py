@@ -30,6 +30,7 @@ from . import checks, kit, report, resolve, tolerance, trace
 
 __all__ = ["SLICE"]
 
-SLICE = SubSlice("planetary", resolve.PlanetarySpec, resolve.resolve_planetary, resolve.findings, kit.build_planetary,
-                 kit.design_summary, checks.check_planetary, check_text, trace.trace, trace_text,
-                 tolerance.tolerance_model, report.report_sections, report.subtitle, report.bill_text)
+SLICE = SubSlice(key="planetary", spec=resolve.PlanetarySpec, resolve=resolve.resolve_planetary, findings=resolve.findings,
+                 build=kit.build_planetary, design_summary=kit.design_summary, check=checks.check_planetary, check_text=check_text,
+                 trace=trace.trace, trace_text=trace_text, tolerance_model=tolerance.tolerance_model,
+                 report_sections=report.report_sections, subtitle=report.subtitle, bill_text=report.bill_text)

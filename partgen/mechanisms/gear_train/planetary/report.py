@@ -13,7 +13,8 @@ from .resolve import PlanetarySpec
 __all__ = ["report_sections", "subtitle", "bill_text"]
 
 
-def report_sections(spec: PlanetarySpec, kit: PlanetaryKit, result: Result, trace: Trace, files: dict) -> list[tuple[str, str]]:
+def report_sections(spec: PlanetarySpec, kit: PlanetaryKit, result: Result, trace: Trace, files: dict
+                    ) -> list[tuple[str, str]]:
     from ....export import report as R
 
     t, st = spec.teeth, trace.stats

@@ -20,7 +20,8 @@ import numpy as np
 from ....core.findings import Result
 from ....design.involute import inv, reference_tooth_thickness
 from ....design.tolerance import Margin, MarginModel, ModelBuilder, seat_credit, seat_factor
-from ..common.tolerance import add_term, external_mesh, feature_xy, gap_margins, project, project_axis, running_fits, tooth
+from ..common.tolerance import (add_term, external_mesh, feature_xy, gap_margins, project, project_axis, running_fits,
+                                tooth)
 from .kit import PlanetaryKit
 from .resolve import PlanetarySpec
 

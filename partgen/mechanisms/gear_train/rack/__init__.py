@@ -25,6 +25,7 @@ from . import checks, kit, report, resolve, tolerance, trace
 
 __all__ = ["SLICE"]
 
-SLICE = SubSlice("rack", resolve.RackSpec, resolve.resolve_rack, resolve.findings, kit.build_rack, kit.design_summary,
-                 checks.check_rack, checks.check_text, trace.trace, trace.trace_text, tolerance.tolerance_model,
-                 report.report_sections, report.subtitle, report.bill_text)
+SLICE = SubSlice(key="rack", spec=resolve.RackSpec, resolve=resolve.resolve_rack, findings=resolve.findings,
+                 build=kit.build_rack, design_summary=kit.design_summary, check=checks.check_rack,
+                 check_text=checks.check_text, trace=trace.trace, trace_text=trace.trace_text, tolerance_model=tolerance.tolerance_model,
+                 report_sections=report.report_sections, subtitle=report.subtitle, bill_text=report.bill_text)

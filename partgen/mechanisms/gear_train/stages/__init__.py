@@ -28,6 +28,7 @@ from . import checks, kit, report, resolve, tolerance, trace
 
 __all__ = ["SLICE"]
 
-SLICE = SubSlice("train", resolve.TrainSpec, resolve.resolve_train, resolve.findings, kit.build_train, kit.design_summary,
-                 checks.check_train, check_text, trace.trace, trace_text, tolerance.tolerance_model,
-                 report.report_sections, report.subtitle, report.bill_text)
+SLICE = SubSlice(key="train", spec=resolve.TrainSpec, resolve=resolve.resolve_train, findings=resolve.findings,
+                 build=kit.build_train, design_summary=kit.design_summary, check=checks.check_train, check_text=check_text,
+                 trace=trace.trace, trace_text=trace_text, tolerance_model=tolerance.tolerance_model,
+                 report_sections=report.report_sections, subtitle=report.subtitle, bill_text=report.bill_text)

@@ -5,9 +5,9 @@ input's turn; the manifest's design."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
-from dataclasses import dataclass
 
 from ....core.parts import Bore, Contact, Part
 from ....core.protocol import ParamsKit

@@ -23,5 +23,5 @@ def trace(spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None)
     turned = turn_train(kit, thetas)
     o = len(spec.shafts) - 1
     drive, nominal, coast = turned["drive"][:, o], turned["nominal"][:, o], turned["coast"][:, o]
-    return output_trace(spec, thetas, drive, nominal, coast, turned["overlap_mm2"], f"shaft {len(spec.shafts) - 1}", out,
-                        lost_motion)
+    return output_trace(spec, thetas, drive, nominal, coast, turned["overlap_mm2"], f"shaft {len(spec.shafts) - 1}",
+                        out, lost_motion)
