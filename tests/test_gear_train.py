@@ -17,7 +17,7 @@ from shapely.geometry import Polygon
 from partgen import pipeline
 from partgen.cli.main import main
 from partgen.design import involute
-from partgen.mechanisms.gear_train.kit import build_train
+from partgen.mechanisms.gear_train.stages.kit import build_train
 from partgen.mechanisms.gear_train.mechanism import MECHANISM
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -17,8 +17,8 @@ from partgen.design.gearing import GearSpec, ToothSystem
 from partgen.geometry.gear import helical_body
 from partgen.geometry.outline import circle
 from partgen.geometry.solid import mesh_arrays
-from partgen.mechanisms.gear_train.checks import exact_mesh_overlap
-from partgen.mechanisms.gear_train.kit import build_train
+from partgen.mechanisms.gear_train.stages.checks import exact_mesh_overlap
+from partgen.mechanisms.gear_train.stages.kit import build_train
 from partgen.mechanisms.gear_train.mechanism import MECHANISM
 from partgen.testing import measure_spur_gear, section_outline
 

@@ -15,7 +15,7 @@ from shapely.geometry import LineString, Point, Polygon
 from partgen import pipeline
 from partgen.cli.main import main
 from partgen.geometry.solid import mesh_arrays
-from partgen.mechanisms.gear_train.hubs import DIN562_NUTS, ISO4032_NUTS
+from partgen.mechanisms.gear_train.common.hubs import DIN562_NUTS, ISO4032_NUTS
 from partgen.mechanisms.gear_train.mechanism import MECHANISM
 from partgen.testing import section_outline
 

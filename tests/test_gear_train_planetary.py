@@ -16,7 +16,8 @@ from partgen.cli.main import main
 from partgen.design.planetary import assembly_whole, planet_angles, planetary_teeth
 from partgen.geometry.measure import section
 from partgen.mechanisms.gear_train.mechanism import MECHANISM
-from partgen.mechanisms.gear_train.planetary import build_planetary, turn_planetary
+from partgen.mechanisms.gear_train.planetary.kit import build_planetary
+from partgen.mechanisms.gear_train.planetary.motion import turn_planetary
 from partgen.testing import measure_spur_gear
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -14,7 +14,7 @@ from shapely.geometry import LineString
 from partgen import pipeline
 from partgen.design.rack import rack_contact_ratio
 from partgen.mechanisms.gear_train.mechanism import MECHANISM
-from partgen.mechanisms.gear_train.rack import build_rack
+from partgen.mechanisms.gear_train.rack.kit import build_rack
 from partgen.testing import section_outline
 
 

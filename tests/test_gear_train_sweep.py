@@ -62,7 +62,9 @@ def test_the_envelope_holds_every_section_the_middle_one_does_not(helical):
 
 def _kit(gear, post):
     parts = (Part("gear", "gear", gear), Part("post", "frame", post))
+    still = lambda ts: np.tile(np.eye(4), (len(np.atleast_1d(ts)), 1, 1))  # noqa: E731 (N poses, none moving)
     return SimpleNamespace(parts=parts, contacts=(), poses=lambda theta=0.0: {"gear": np.eye(4), "post": np.eye(4)},
+                           poses_over=lambda ts: {"gear": still(ts), "post": still(ts)},
                            params=SimpleNamespace(checks=CheckSettings(1, 0.001, 0.3, 1.2, 2.0, 5.0)))
 
 

@@ -103,7 +103,7 @@ def test_trace_json_has_the_band_for_chain_and_belt():
 # --- gear trains: lost motion at the output -----------------------------------------------------------
 
 def test_train_lost_motion_moves_with_backlash_and_clearance():
-    from partgen.mechanisms.gear_train.play import lost_motion
+    from partgen.mechanisms.gear_train.stages.play import lost_motion
 
     base = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.1"))
     lash = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.2"))

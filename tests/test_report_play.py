@@ -1,5 +1,5 @@
 """A gear train's report says what its play costs: the output's lost motion (arc-minutes, per mesh)
-and the transmission-error band, the figures trace measures (mechanisms/gear_train/play.py)."""
+and the transmission-error band, the figures trace measures (mechanisms/gear_train/stages/play.py)."""
 
 import re
 

@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from ...design import involute
+from ....design import involute
 
 __all__ = ["lost_motion"]
 

@@ -13,17 +13,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...checks.motion import prepare
-from ...checks.sequence import run_shared
-from ...core.findings import Finding, Result
-from ...core.parts import Contact, Part
-from ...core.protocol import ParamsKit
-from ...core.transforms import pose_z
-from ...design import rules
-from ...design.rules import gear_rules
-from ...design.gear_train import overlap_ratio
-from ...geometry.measure import intersection
-from .kit import TrainKit, TrainSpec
+from ....checks.motion import prepare
+from ....checks.sequence import run_shared
+from ....core.findings import Finding, Result
+from ....core.parts import Contact, Part
+from ....core.protocol import ParamsKit
+from ....core.transforms import pose_z
+from ....design import rules
+from ....design.rules import gear_rules
+from ....design.gear_train import overlap_ratio
+from ....geometry.measure import intersection
+from .kit import TrainKit
+from .resolve import TrainSpec
 from .motion import turn_train
 
 __all__ = ["MeshView", "check_train", "sample_thetas", "exact_mesh_overlap"]

@@ -11,7 +11,7 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
-from ...geometry.measure import section
+from ....geometry.measure import section
 from .kit import TrainKit
 
 __all__ = ["printed_sections", "turn_train"]
