@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
+from ....checks.contact import free_turn
 from ....geometry.measure import section
 from ....geometry.outline import circle
 from .kit import PlanetaryKit
@@ -70,10 +71,7 @@ def _contact(fixed, piece, centre, sense: float, reach: float, tol: float, guess
             lo, hi = (a, b) if area(a) <= 1e-9 else (0.0, a)
         else:
             lo = b
-    while hi - lo > tol:
-        mid = (lo + hi) / 2
-        lo, hi = (lo, mid) if area(mid) > 1e-9 else (mid, hi)
-    return lo
+    return free_turn(lambda d: area(d) > 1e-9, lo, hi, tol)
 
 
 def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sections=None) -> dict:

@@ -58,7 +58,6 @@ def tolerance_model(kit: PlanetaryKit, result: Result, accuracy_mm: float, seate
     s: PlanetarySpec = kit.params
     b = ModelBuilder()
     plays = running_fits(b, kit, result)
-    N = len(s.angles)
     a = s.centre_distance
     # the sun pulled outward by each planet, each planet outward by the sun and inward by the ring:
     # their directions cancel (κ = 0); the carrier is not in a mesh

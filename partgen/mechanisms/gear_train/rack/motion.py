@@ -9,6 +9,7 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
+from ....checks.contact import free_turn
 from ....geometry.measure import section
 from .kit import RackKit
 
@@ -49,9 +50,5 @@ def turn_rack(kit: RackKit, thetas: np.ndarray, tol: float = 1e-6) -> dict:
             return P.intersection(q).area if P.intersects(q) else 0.0
         out["overlap_mm2"][i] = area(0.0)
         for key, sense in (("drive", -1.0), ("coast", 1.0)):
-            lo, hi = 0.0, math.pi * m / 2
-            while hi - lo > tol:
-                mid = (lo + hi) / 2
-                lo, hi = (lo, mid) if area(sense * mid) > 1e-9 else (mid, hi)
-            out[key][i] = nominal[i] + sense * lo
+            out[key][i] = nominal[i] + sense * free_turn(lambda d: area(sense * d) > 1e-9, 0.0, math.pi * m / 2, tol)
     return out

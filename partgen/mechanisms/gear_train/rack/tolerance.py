@@ -31,8 +31,8 @@ def tolerance_model(kit: RackKit, result: Result, accuracy_mm: float, seated: bo
     # to its rail face, less the rack's depth back to pitch line (its back face moves out by half its
     # outline's deviation); the rack pressed back onto its rail takes the rail's gap
     rail_gap = s.running / 2
-    da = {(f"frame_bottom rail face y", "position", "frame_bottom"): 1.0,
-          (f"frame_bottom shaft hole y", "position", "frame_bottom"): -1.0,
+    da = {("frame_bottom rail face y", "position", "frame_bottom"): 1.0,
+          ("frame_bottom shaft hole y", "position", "frame_bottom"): -1.0,
           ("rack outline", "outline", "rack"): -0.5}
     credit = 0.0
     if seated:

@@ -11,6 +11,7 @@ import numpy as np
 import shapely
 from shapely.geometry import box
 
+from ....checks.contact import free_turn
 from ....geometry.measure import section
 from .kit import TrainKit
 
@@ -78,10 +79,7 @@ def turn_train(kit: TrainKit, thetas: np.ndarray, sections: dict | None = None, 
                     return drv.intersection(q).area if drv.intersects(q) else 0.0
                 if key == "drive":
                     out["overlap_mm2"][i, mesh.stage] = area(0.0)
-                lo, hi = 0.0, reach
-                while hi - lo > tol:
-                    mid = (lo + hi) / 2
-                    lo, hi = (lo, mid) if area(sense * mid) > 1e-9 else (mid, hi)
+                lo = free_turn(lambda d: area(sense * d) > 1e-9, 0.0, reach, tol)
                 A[i, shn.index] = phi + sense * lo
                 # a compound or idler shaft turns as one: its next stage is driven from this angle
     return out
