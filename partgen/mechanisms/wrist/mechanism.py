@@ -90,6 +90,10 @@ class Wrist:
         from ...checks.bores import bore_findings
 
         res = check_wrist(kit, progress=progress, **wrist_sampling(samples))
+        if spec.mate is not None:
+            from .mate import check_mate
+
+            check_mate(kit, res)
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
         found, bores = bore_findings(kit.parts)
@@ -128,6 +132,16 @@ class Wrist:
             wrist_figure(spec.I, spec.A, theta_max, pair.rows, out / "wrist.png", out / "wrist.svg",
                          f"{spec.name}: I = {spec.I:g}, centre distance {spec.A:g} mm")
             files = ["wrist.png", "wrist.svg"]
+        if spec.mate is not None:
+            from .mate import trace_mate
+
+            mate = trace_mate(spec)
+            stats["mate"] = mate["stats"]
+            if out is not None:
+                from .plots import mate_figure
+
+                mate_figure(spec, mate["rows"], out / "cross_mate.png")
+                files.append("cross_mate.png")
         data = np.column_stack([t, sph.ratio(t, spec.I), sph.mating_angle(t, spec.I)])
         return Trace(stats, files, columns=("theta_rad", "ratio", "phi_rad"), data=data)
 
@@ -159,6 +173,11 @@ class Wrist:
                  f"{f['min_engaged_mm3']:.2f} mm³",
                  f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
         lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
+        if "mate" in f:
+            m = f["mate"]
+            lines.append(f"  cross gear and its mate: {m['poses']} poses, largest overlap {m['max_overlap_mm3']:.5f} mm³ "
+                         f"(ε {m['epsilon_mm3']:g}), backlash {m['backlash_min_mm']:.3f}–{m['backlash_max_mm']:.3f} mm "
+                         "at the mate's pitch circle")
         return "\n".join(lines + check_footer(result, seconds, folder))
 
     def trace_text(self, spec: WristSpec, trace: Trace, folder) -> str:
@@ -171,6 +190,11 @@ class Wrist:
             lines.append(f"  ring {r['k']}: {r['teeth']} teeth at θ = {r['theta_deg']:.3f}°, φ = {r['phi_deg']:.3f}°, "
                          f"latitudinal pitch {r['lat_pitch_mm']:.3f} mm ({100 * r['lat_pitch_off']:+.2f} % off the "
                          "longitudinal)")
+        if "mate" in stats:
+            m = stats["mate"]
+            lines.append(f"  cross gear's mate (mid-plane): ratio {m['ratio']:.9f} (design {m['ratio_design']:g}, off by "
+                         f"{m['ratio_error']:.1e}); transmission error {m['te_pp_um']:.2f} µm peak to peak at the cross "
+                         f"gear's pitch circle; backlash {m['backlash_mid_mm']:.3f} mm")
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
