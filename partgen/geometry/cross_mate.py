@@ -192,12 +192,13 @@ def _cutter_at(cs: GearSpec, rings, x: float) -> list[np.ndarray]:
     return out
 
 
-def _sweep_poses(cs: GearSpec, mate: MateSpec, step: float) -> list[np.ndarray]:
-    """(3, 3) planar transforms CS (y, z) → MP (x, y) for the MP turns of one engagement."""
+def _sweep_poses(cs: GearSpec, mate: MateSpec, step: float, half: bool = False) -> list[np.ndarray]:
+    """(3, 3) planar transforms CS (y, z) → MP (x, y) for the MP turns of one engagement (``half``:
+    the turns ψ ≥ 0 only)."""
     e = engagement(cs, mate) * cs.teeth / mate.teeth
     n = math.ceil(e / step)
     out = []
-    for psi in np.linspace(-e, e, 2 * n + 1):
+    for psi in np.linspace(-e, e, 2 * n + 1)[n if half else 0:]:
         T = np.linalg.inv(mate_pose(psi, cs, mate)) @ cross_pose(psi, cs, mate)
         # a CS point (x, y, z) lands at T (x, y, z, 1); rotations about x keep x, so in the plane the
         # map (y, z) → MP (X, Y) is the 2-D affine part (the MP's local z is the CS's x)
@@ -216,12 +217,21 @@ def mate_section(cs: GearSpec, mate: MateSpec, x: float = 0.0, step: float | Non
     ra = mate.tip_radius(cs)
     window = shapely.Point(0, 0).buffer(ra + 0.5, 128)
     cutters = _cutter_at(cs, rings, x)
+    # the cut is symmetric about the MP's plane y = 0 (the CS's mirror y → −y takes ring k to ring
+    # z/2 − k and a turn ψ to −ψ; the rings kept are symmetric), so the poses ψ ≥ 0 are cut and
+    # mirrored
+    ks = sorted(k for k, _ in rings)
+    mirror = ks == sorted(cs.teeth // 2 - k for k in ks)
     polys = []
-    for M in _sweep_poses(cs, mate, step):
+    for M in _sweep_poses(cs, mate, step, half=mirror):
         for q in cutters:
             P = q @ M[:2, :2].T + M[:2, 2]
-            polys.append(Polygon(P))
-    space = shapely.intersection(shapely.union_all(polys), window)
+            if np.einsum("ij,ij->i", P, P).min() < (ra + 0.5) ** 2:  # a pose wholly outside the blank cuts nothing
+                polys.append(P)
+    space = shapely.union_all(shapely.polygons(polys))
+    if mirror:
+        space = shapely.union(space, shapely.affinity.scale(space, 1.0, -1.0, origin=(0, 0)))
+    space = shapely.intersection(space, window)
     spaces = [shapely.affinity.rotate(space, 360.0 * k / mate.teeth, origin=(0, 0)) for k in range(mate.teeth)]
     disc = shapely.Point(0, 0).buffer(ra, max(256, 16 * mate.teeth))
     return shapely.difference(disc, shapely.union_all(spaces))
@@ -250,8 +260,8 @@ def _one_pitch(section: Polygon, teeth: int, n: int) -> np.ndarray:
     return np.array([ring.interpolate(t).coords[0] for t in d])
 
 
-def mate_gear(cs: GearSpec, mate: MateSpec, step: float | None = None, slices: int = 8,
-              per_pitch: int = 240) -> tuple[m3d.Manifold, dict]:
+def mate_gear(cs: GearSpec, mate: MateSpec, step: float | None = None, slices: int = 5,
+              per_pitch: int = 160) -> tuple[m3d.Manifold, dict]:
     """The MP gear in its own frame (axis z, face from −face/2 to +face/2, bore through) and figures
     of its cut. Its sections at ``2 slices + 1`` planes across the face are 2-D generating cuts
     (``mate_section``, exact in each plane up to the sweep's step), their outlines resampled to
