@@ -301,5 +301,5 @@ def mate_gear(cs: GearSpec, mate: MateSpec, step: float | None = None, slices: i
     bore = m3d.Manifold.cylinder(mate.face_width + 2.0, mate.bore_diameter / 2, mate.bore_diameter / 2, 64, True)
     solid = body - bore
     return solid, {"poses": len(_sweep_poses(cs, mate, step)), "step_deg": round(math.degrees(step), 4),
-                   "rings": [k for k, _ in rings], "planes": int(len(zs)),
+                   "rings": tuple(k for k, _ in rings), "planes": int(len(zs)),
                    "engagement_deg": round(math.degrees(engagement(cs, mate) * cs.teeth / mate.teeth), 3)}

@@ -95,6 +95,9 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
                "theta_max_deg": round(math.degrees(theta_max), 4), "valid_end_deg": round(math.degrees(end), 4),
                "cap_deg": [round(math.degrees(alpha1), 4), round(math.degrees(alpha2), 4)],
                "sweep_pieces": pieces, "sweep_poses": n_poses}
+    mate = next((p for p in parts if p.name == "cross_mate"), None)
+    if mate is not None:  # how the mate was cut: sweep poses, step, the rings, the planes
+        figures["mate"] = {k: list(v) if isinstance(v, tuple) else v for k, v in mate.info}
     return WristKit(spec, pair, tuple(parts), tuple(domes), theta_max,
                     WristParams(spec.name, spec.density, spec.material, spec.printer), figures)
 

@@ -24,7 +24,7 @@ from .schema import WristDesign
 
 __all__ = ["Wrist", "MECHANISM"]
 
-COLOURS = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b"}
+COLOURS = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b", "cross_mate": "#e45756"}
 
 
 
@@ -229,8 +229,41 @@ class Wrist:
                       + R.table(["θ on gear 1 °", "twist play °", "bend play °"], play)
                       + "<p>Twist play is large: domes resist a twist about the line of centres only through the "
                       "teeth beside the contact, and near the pole the contact tooth sits on that axis.</p>")
-        return [("Design", design), ("Math", R.img(files["wrist.png"], "ratio, mating angle, meridians")),
-                ("Parts", pics), ("Check", check_html)]
+        sections = [("Design", design), ("Math", R.img(files["wrist.png"], "ratio, mating angle, meridians")),
+                    ("Parts", pics), ("Check", check_html)]
+        if spec.mate is not None:
+            sections.append(("Cross gear and its mate", self._mate_section(spec, kit, result, trace, files, meshes)))
+        return sections
+
+    def _mate_section(self, spec: WristSpec, kit: WristKit, result: Result, trace: Trace, files: dict, meshes) -> str:
+        """The cross gear and its mate in mesh (3-D), the mid-plane and the transmission error, the
+        check's overlap and backlash, the trace's ratio."""
+        from ...export import report as R
+        from ...export.render import render
+        from ...geometry.cross_mate import cross_pose, mate_pose
+
+        cs, mate = spec.cross, spec.mate
+        Tc, Tm = cross_pose(0.0, cs, mate, math.radians(-20.0)), mate_pose(0.0, cs, mate)
+        (vc, fc), (vm, fm) = meshes["cross_gear"], meshes["cross_mate"]
+        pic = render([(vc @ Tc[:3, :3].T + Tc[:3, 3], fc, COLOURS["cross_gear"]),
+                      (vm @ Tm[:3, :3].T + Tm[:3, 3], fm, COLOURS["cross_mate"])], (520, 520), elev=20, azim=-60)
+        html = (f'<div class="grid"><figure>{R.img(pic, "cross gear and mate")}<figcaption>the mate ({mate.teeth} teeth) '
+                f"on the cross gear's pole, the cross gear tilted 20° about its ring axis (its free turn)</figcaption>"
+                "</figure></div>")
+        if "cross_mate.png" in files:
+            html += R.img(files["cross_mate.png"], "mid-plane and transmission error")
+        m = trace.stats.get("mate", {})
+        if m:
+            html += (f"<p>Ratio {m['ratio']:.9f} mate turns per cross-gear turn (design {m['ratio_design']:g}, off by "
+                     f"{m['ratio_error']:.1e}), transmission error {m['te_pp_um']:.2f} µm peak to peak at the cross gear's "
+                     f"pitch circle, backlash {m['backlash_mid_mm']:.3f} mm in the mid-plane.</p>")
+        f = result.figures.get("mate")
+        if f:
+            html += (f'<p class="{"ok" if f["max_overlap_mm3"] <= f["epsilon_mm3"] else "fail"}">{f["poses"]} poses: largest '
+                     f'overlap {f["max_overlap_mm3"]:.5f} mm³ (ε {f["epsilon_mm3"]:g} mm³).</p>'
+                     + R.table(["mate turn ψ °", "cross gear tilt °", "backlash °", "backlash mm (mate pitch circle)"],
+                               [[r["psi_deg"], r["tilt_deg"], r["backlash_deg"], r["backlash_mm"]] for r in f["backlash"]]))
+        return html
 
     def subtitle(self, spec: WristSpec) -> str:
         return f"wrist pair, I = {spec.I:g}"
