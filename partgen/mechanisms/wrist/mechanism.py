@@ -38,6 +38,14 @@ def wrist_sampling(samples: int | None) -> dict:
     n_psi = max(4, round(samples / n_theta))
     return {"grid": (n_theta, n_psi), "random_poses": samples // 4, "play_thetas": 4 if samples >= 96 else 3}
 
+def mate_sampling(samples: int | None) -> dict:
+    """`check --samples N` on the cross gear's mate: about N/8 mate turns at each of three tilts (3
+    to 13), the backlash at 3 turns (1 under 96 samples). None: the default (13 turns, 3)."""
+    if samples is None:
+        return {}
+    return {"psi_samples": max(3, min(13, samples // 8)), "backlash_poses": 3 if samples >= 96 else 1}
+
+
 class Wrist:
     kind = "wrist"
     title = "wrist gear pair"
@@ -93,7 +101,7 @@ class Wrist:
         if spec.mate is not None:
             from .mate import check_mate
 
-            check_mate(kit, res)
+            check_mate(kit, res, **mate_sampling(samples))
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
         found, bores = bore_findings(kit.parts)
