@@ -45,12 +45,12 @@ from dataclasses import dataclass
 import manifold3d as m3d
 import numpy as np
 import shapely
+from shapely import affinity
 from shapely.geometry import Polygon
 
 from ..design.gearing import GearSpec
 from .cross_gear import GROW
 from .gear import gear_outline
-from .solid import cross_section
 
 __all__ = ["MateSpec", "mate_pose", "cross_pose", "mate_gear", "mate_rings", "engagement", "mate_step",
            "mate_section", "rx", "ry"]
@@ -230,9 +230,9 @@ def mate_section(cs: GearSpec, mate: MateSpec, x: float = 0.0, step: float | Non
                 polys.append(P)
     space = shapely.union_all(shapely.polygons(polys))
     if mirror:
-        space = shapely.union(space, shapely.affinity.scale(space, 1.0, -1.0, origin=(0, 0)))
+        space = shapely.union(space, affinity.scale(space, 1.0, -1.0, origin=(0, 0)))
     space = shapely.intersection(space, window)
-    spaces = [shapely.affinity.rotate(space, 360.0 * k / mate.teeth, origin=(0, 0)) for k in range(mate.teeth)]
+    spaces = [affinity.rotate(space, 360.0 * k / mate.teeth, origin=(0, 0)) for k in range(mate.teeth)]
     disc = shapely.Point(0, 0).buffer(ra, max(256, 16 * mate.teeth))
     return shapely.difference(disc, shapely.union_all(spaces))
 

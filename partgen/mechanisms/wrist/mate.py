@@ -116,6 +116,7 @@ def trace_mate(spec, pitches: int = 2, per_pitch: int = 12) -> dict:
     error at ``per_pitch`` turns a pitch (see the module's docstring). Returns the stats and the
     (ψ, φ, error) rows."""
     import shapely
+    from shapely import affinity
     from shapely.geometry import Polygon
 
     from ...geometry.cross_gear import GROW
@@ -125,7 +126,6 @@ def trace_mate(spec, pitches: int = 2, per_pitch: int = 12) -> dict:
     cs, mate = spec.cross, spec.mate
     sec = mate_section(cs, mate)
     prof = Polygon(gear_outline(cs).points).buffer(GROW, join_style="mitre")
-    uv = np.asarray(prof.exterior.coords)
     A, ra = mate.centre_distance(cs), mate.tip_radius(cs)
     window = shapely.Point(0, A).buffer(ra + 1.0, 64)
     rho = mate.teeth / cs.teeth
@@ -136,9 +136,8 @@ def trace_mate(spec, pitches: int = 2, per_pitch: int = 12) -> dict:
     def cs_in_mp(psi, delta):
         """The cross gear's profile (turned δ more about x) in the mate's frame at its turn ψ."""
         T = np.linalg.inv(mate_pose(psi, cs, mate)) @ cross_pose(psi, cs, mate, 0.0, delta)
-        P = np.column_stack([np.zeros(len(uv)), uv[:, 0], uv[:, 1]])
         # only the teeth near the mate: clip in the cross gear's frame first (cheap)
-        near = shapely.intersection(prof, shapely.affinity.rotate(window, -math.degrees(-psi * rho + delta), origin=(0, 0)))
+        near = shapely.intersection(prof, affinity.rotate(window, -math.degrees(-psi * rho + delta), origin=(0, 0)))
         pts = [np.asarray(g.exterior.coords) for g in getattr(near, "geoms", [near]) if not g.is_empty]
         out = []
         for q in pts:
