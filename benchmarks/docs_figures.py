@@ -225,16 +225,25 @@ def calibrate(tmp: Path) -> dict:
 
 
 def wrist(tmp: Path) -> dict:
-    """The wrist pairs' check: poses, the least engaged volume, bend and twist play over the bend."""
-    rows = []
+    """The wrist pairs' check: poses, the least engaged volume, bend and twist play over the bend; the
+    cross gear's mate: overlap, backlash, ratio and transmission error."""
+    rows, mates = [], []
     for name in ("wrist_sphere", "wrist_quasi_ellipsoid"):
         f = partgen("check", f"configs/{name}.yaml", "--no-plates", "-o", str(tmp / name))["figures"]
         play = f["play"]
         bend = [p["bend_play_deg"] for p in play]
         rows.append([f"`{name}.yaml`", f["poses"], r(f["min_engaged_mm3"], 0), f"{min(bend)}–{max(bend)}",
                      play[0]["twist_play_deg"], play[-1]["twist_play_deg"], play[-1]["theta_deg"]])
+        if "mate" in f:  # the cross gear's mate: the check's overlap and backlash, the trace's ratio and error
+            m = f["mate"]
+            t = partgen("trace", f"configs/{name}.yaml", "-o", str(tmp / f"{name}_trace"))["mate"]
+            mates.append([f"`{name}.yaml`", m["poses"], f"{m['max_overlap_mm3']:.5f}", m["epsilon_mm3"],
+                          f"{m['backlash_min_mm']:.3f}–{m['backlash_max_mm']:.3f}", t["backlash_mid_mm"],
+                          f"{t['ratio']:.9f}", f"{t['ratio_error']:.1e}", t["te_pp_um"]])
     return {"table": table(["design", "poses", "least engaged mm³", "bend play °", "twist play at the pole °",
-                            "twist play at the edge °", "edge θ °"], rows)}
+                            "twist play at the edge °", "edge θ °"], rows),
+            "mate": table(["design", "poses", "largest overlap mm³", "ε mm³", "backlash mm (3-D)",
+                           "backlash mm (mid-plane)", "ratio", "ratio error", "transmission error µm p-p"], mates)}
 
 
 def printers(tmp: Path) -> dict:

@@ -32,7 +32,7 @@ def built(request, kit_of):
 @pytest.mark.parametrize("name", CONFIGS)
 def test_wrist_kits_build_watertight_and_fit(name, kit_of):
     loaded, kit, man, folder = kit_of(name)
-    expected = ["gear1", "gear2"] + (["cross_gear"] if name == "wrist_sphere" else [])
+    expected = ["gear1", "gear2"] + (["cross_gear", "cross_mate"] if name == "wrist_sphere" else [])
     assert [p["name"] for p in man["parts"]] == expected
     for p in man["parts"]:
         mesh = trimesh.load(folder / p["file"], file_type="stl", force="mesh")

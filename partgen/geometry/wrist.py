@@ -88,43 +88,76 @@ def domes_union(domes: Sequence[Dome], grow: float = 0.0, segments: int = 32, tu
     return m3d.Manifold.batch_boolean(dome_solid(domes, grow, segments, turn), m3d.OpType.Add)
 
 
+def _rz(deg: float) -> np.ndarray:
+    t = math.radians(deg)
+    return np.array([[math.cos(t), -math.sin(t), 0.0], [math.sin(t), math.cos(t), 0.0], [0.0, 0.0, 1.0]])
+
+
+def _copy_of(centres: np.ndarray, base: np.ndarray, step_deg: float) -> float | None:
+    """The turn β (deg) about z with Rz(−β)·base[:, b] = centres[:, b + s] for every pose (s = β / step,
+    the ψ columns shifted cyclically), or None: then the dome's sweep is the base dome's turned
+    by −β. Tested on the numbers, so it holds for any pose grid that has the symmetry."""
+    c0, b0 = centres[0, 0], base[0, 0]
+    if abs(np.hypot(*c0[:2]) - np.hypot(*b0[:2])) > 1e-9 or abs(c0[2] - b0[2]) > 1e-9 or np.hypot(*c0[:2]) < 1e-9:
+        return None
+    for s in range(1, centres.shape[1]):
+        beta = s * step_deg
+        moved = base @ _rz(-beta).T
+        if np.allclose(np.roll(centres, -s, axis=1), moved, atol=1e-9, rtol=0.0):
+            return beta
+    return None
+
+
 def socket_sweep(domes: Sequence[Dome], poses: np.ndarray, grow: float, reach: float, segments: int,
                  batch: int = 256, turn=(0.0, 0.0, 0.0)) -> tuple[m3d.Manifold, int]:
     """Union of gear 1's domes (radius + ``grow``) as seen from gear 2 over a grid of poses.
 
-    poses : (a, b, 4, 4) gear-2-from-gear-1 transforms on an (θ, ψ) grid; consecutive θ of one ψ are
-    joined by the convex hull of the two instances (a continuous sweep along θ).
+    poses : (a, b, 4, 4) gear-2-from-gear-1 transforms on an (θ, ψ) grid, ψ evenly spaced over a
+    turn; consecutive θ of one ψ are joined by the convex hull of the two instances (a continuous
+    sweep along θ).
     reach : domes whose centre lies farther than this from gear 2's centre cannot touch it and are
-    skipped (the clip). Batches of ``batch`` pieces are unioned at a time (the batch), which keeps
-    memory bounded. ``turn``: the spheres' facets turned (deg), the same sweep tessellated
-    differently. Returns the swept solid and how many pieces went into it."""
-    base = [np.array(d.centre) for d in domes]
-    rads = [d.radius + grow for d in domes]
-    pieces: list[m3d.Manifold] = []
-    acc = None
+    skipped (the clip). Each dome's pieces are unioned on their own (they lie together, so the
+    union is cheap), then the domes' sweeps are unioned. A dome whose path over the grid is another
+    dome's turned about z (a ring's teeth on a ψ grid that steps through their spacing: tested on
+    the numbers, ``_copy_of``) takes that dome's sweep turned instead of being swept again.
+    ``batch``: kept for callers; the grouping is per dome. ``turn``: the spheres' facets turned
+    (deg), the same sweep tessellated differently. Returns the swept solid and how many pieces
+    went into it (copies counted as their pieces)."""
+    del batch
+    A, B = poses.shape[:2]
+    step_deg = 360.0 / B
+    sweeps: list[m3d.Manifold] = []
+    done: list[tuple[np.ndarray, m3d.Manifold, int]] = []  # (centres, sweep, pieces) of domes swept
     count = 0
-
-    def flush():
-        nonlocal acc, pieces
-        if pieces:
-            part = m3d.Manifold.batch_boolean(pieces, m3d.OpType.Add)
-            acc = part if acc is None else m3d.Manifold.batch_boolean([acc, part], m3d.OpType.Add)
-            pieces = []
-
-    for b in range(poses.shape[1]):
-        for k, (c, r) in enumerate(zip(base, rads)):
+    for d in domes:
+        r = d.radius + grow
+        c = np.asarray(d.centre, dtype=float)
+        centres = np.einsum("abij,j->abi", poses[:, :, :3, :3], c) + poses[:, :, :3, 3]  # (A, B, 3)
+        copied = None
+        for base, sweep, n in done:
+            beta = _copy_of(centres, base, step_deg)
+            if beta is not None:
+                copied = (sweep.rotate((0.0, 0.0, -beta)), n)
+                break
+        if copied is not None:
+            sweeps.append(copied[0])
+            count += copied[1]
+            continue
+        pieces = []
+        ball = _ball(r, segments, turn)
+        for b in range(B):
             prev = None
-            for a in range(poses.shape[0]):
-                T = poses[a, b]
-                p = T[:3, :3] @ c + T[:3, 3]
+            for a in range(A):
+                p = centres[a, b]
                 if np.linalg.norm(p) - r > reach:
                     prev = None
                     continue
-                s = _ball(r, segments, turn).translate(tuple(p))
+                s = ball.translate(tuple(p))
                 pieces.append(s if prev is None else m3d.Manifold.batch_hull([prev, s]))
-                count += 1
                 prev = s
-                if len(pieces) >= batch:
-                    flush()
-    flush()
-    return (acc if acc is not None else m3d.Manifold()), count
+        count += len(pieces)
+        sweep = m3d.Manifold.batch_boolean(pieces, m3d.OpType.Add) if pieces else m3d.Manifold()
+        done.append((centres, sweep, len(pieces)))
+        sweeps.append(sweep)
+    sweeps = [s for s in sweeps if not s.is_empty()]
+    return (m3d.Manifold.batch_boolean(sweeps, m3d.OpType.Add) if sweeps else m3d.Manifold()), count

@@ -54,6 +54,9 @@ class WristKit(ParamsKit):
         shown_beside = np.eye(4)  # the cross gear is the other tooth form, not part of this pair
         shown_beside[0, 3] = -1.5 * self.spec.A
         out["cross_gear"] = shown_beside
+        if self.spec.mate is not None:  # in mesh with the cross gear, on its pole
+            from ...geometry.cross_mate import mate_pose
+            out["cross_mate"] = shown_beside @ mate_pose(0.0, self.spec.cross, self.spec.mate)
         return out
 
 
@@ -92,6 +95,9 @@ def build_wrist(spec: WristSpec, progress=None) -> WristKit:
                "theta_max_deg": round(math.degrees(theta_max), 4), "valid_end_deg": round(math.degrees(end), 4),
                "cap_deg": [round(math.degrees(alpha1), 4), round(math.degrees(alpha2), 4)],
                "sweep_pieces": pieces, "sweep_poses": n_poses}
+    mate = next((p for p in parts if p.name == "cross_mate"), None)
+    if mate is not None:  # how the mate was cut: sweep poses, step, the rings, the planes
+        figures["mate"] = {k: list(v) if isinstance(v, tuple) else v for k, v in mate.info}
     return WristKit(spec, pair, tuple(parts), tuple(domes), theta_max,
                     WristParams(spec.name, spec.density, spec.material, spec.printer), figures)
 
@@ -139,6 +145,14 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
         parts.append(Part("cross_gear", "wrist_gear", solid, gear=spec.cross,
                           bores=(Bore("shaft", (0.0, 0.0, 0.0), (0.0, 0.0, 1.0), fit.pin_diameter,
                                       spec.base_height + A / 4 - 1.0),)))
+        if spec.mate is not None:  # its mate: an ABENICS monopole gear cut by the cross gear's ring teeth
+            say("cross gear's mate")
+            from ...geometry.cross_mate import mate_gear
+            mate, mate_figures = mate_gear(spec.cross, spec.mate)
+            half = spec.mate.face_width / 2
+            parts.append(Part("cross_mate", "wrist_gear", mate, info=tuple(sorted(mate_figures.items())),
+                              bores=(Bore("shaft", (0.0, 0.0, -half), (0.0, 0.0, 1.0), spec.mate.bore_diameter - 0.01,
+                                          spec.mate.face_width),)))
     # each lies on its larger flat face unless the other needs less support
     parts = [replace(p, print_flip=least_support_flip(p.solid, spec.printer.overhang_deg)) for p in parts]
     return parts, domes, pieces, int(poses.shape[0] * poses.shape[1]), (alpha1, alpha2)

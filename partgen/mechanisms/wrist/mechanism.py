@@ -24,7 +24,7 @@ from .schema import WristDesign
 
 __all__ = ["Wrist", "MECHANISM"]
 
-COLOURS = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b"}
+COLOURS = {"gear1": "#4c78a8", "gear2": "#f58518", "cross_gear": "#54a24b", "cross_mate": "#e45756"}
 
 
 
@@ -37,6 +37,14 @@ def wrist_sampling(samples: int | None) -> dict:
     n_theta = max(2, round(math.sqrt(samples * 6 / 16)))
     n_psi = max(4, round(samples / n_theta))
     return {"grid": (n_theta, n_psi), "random_poses": samples // 4, "play_thetas": 4 if samples >= 96 else 3}
+
+def mate_sampling(samples: int | None) -> dict:
+    """`check --samples N` on the cross gear's mate: about N/8 mate turns at each of three tilts (3
+    to 13), the backlash at 3 turns (1 under 96 samples). None: the default (13 turns, 3)."""
+    if samples is None:
+        return {}
+    return {"psi_samples": max(3, min(13, samples // 8)), "backlash_poses": 3 if samples >= 96 else 1}
+
 
 class Wrist:
     kind = "wrist"
@@ -90,6 +98,10 @@ class Wrist:
         from ...checks.bores import bore_findings
 
         res = check_wrist(kit, progress=progress, **wrist_sampling(samples))
+        if spec.mate is not None:
+            from .mate import check_mate
+
+            check_mate(kit, res, **mate_sampling(samples))
         found, on_bed = bed_findings(kit.parts, kit.printer)
         res.add(*found)
         found, bores = bore_findings(kit.parts)
@@ -128,6 +140,16 @@ class Wrist:
             wrist_figure(spec.I, spec.A, theta_max, pair.rows, out / "wrist.png", out / "wrist.svg",
                          f"{spec.name}: I = {spec.I:g}, centre distance {spec.A:g} mm")
             files = ["wrist.png", "wrist.svg"]
+        if spec.mate is not None:
+            from .mate import trace_mate
+
+            mate = trace_mate(spec)
+            stats["mate"] = mate["stats"]
+            if out is not None:
+                from .plots import mate_figure
+
+                mate_figure(spec, mate["rows"], out / "cross_mate.png")
+                files.append("cross_mate.png")
         data = np.column_stack([t, sph.ratio(t, spec.I), sph.mating_angle(t, spec.I)])
         return Trace(stats, files, columns=("theta_rad", "ratio", "phi_rad"), data=data)
 
@@ -159,6 +181,11 @@ class Wrist:
                  f"{f['min_engaged_mm3']:.2f} mm³",
                  f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
         lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
+        if "mate" in f:
+            m = f["mate"]
+            lines.append(f"  cross gear and its mate: {m['poses']} poses, largest overlap {m['max_overlap_mm3']:.5f} mm³ "
+                         f"(ε {m['epsilon_mm3']:g}), backlash {m['backlash_min_mm']:.3f}–{m['backlash_max_mm']:.3f} mm "
+                         "at the mate's pitch circle")
         return "\n".join(lines + check_footer(result, seconds, folder))
 
     def trace_text(self, spec: WristSpec, trace: Trace, folder) -> str:
@@ -171,6 +198,11 @@ class Wrist:
             lines.append(f"  ring {r['k']}: {r['teeth']} teeth at θ = {r['theta_deg']:.3f}°, φ = {r['phi_deg']:.3f}°, "
                          f"latitudinal pitch {r['lat_pitch_mm']:.3f} mm ({100 * r['lat_pitch_off']:+.2f} % off the "
                          "longitudinal)")
+        if "mate" in stats:
+            m = stats["mate"]
+            lines.append(f"  cross gear's mate (mid-plane): ratio {m['ratio']:.9f} (design {m['ratio_design']:g}, off by "
+                         f"{m['ratio_error']:.1e}); transmission error {m['te_pp_um']:.2f} µm peak to peak at the cross "
+                         f"gear's pitch circle; backlash {m['backlash_mid_mm']:.3f} mm")
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
@@ -205,8 +237,41 @@ class Wrist:
                       + R.table(["θ on gear 1 °", "twist play °", "bend play °"], play)
                       + "<p>Twist play is large: domes resist a twist about the line of centres only through the "
                       "teeth beside the contact, and near the pole the contact tooth sits on that axis.</p>")
-        return [("Design", design), ("Math", R.img(files["wrist.png"], "ratio, mating angle, meridians")),
-                ("Parts", pics), ("Check", check_html)]
+        sections = [("Design", design), ("Math", R.img(files["wrist.png"], "ratio, mating angle, meridians")),
+                    ("Parts", pics), ("Check", check_html)]
+        if spec.mate is not None:
+            sections.append(("Cross gear and its mate", self._mate_section(spec, kit, result, trace, files, meshes)))
+        return sections
+
+    def _mate_section(self, spec: WristSpec, kit: WristKit, result: Result, trace: Trace, files: dict, meshes) -> str:
+        """The cross gear and its mate in mesh (3-D), the mid-plane and the transmission error, the
+        check's overlap and backlash, the trace's ratio."""
+        from ...export import report as R
+        from ...export.render import render
+        from ...geometry.cross_mate import cross_pose, mate_pose
+
+        cs, mate = spec.cross, spec.mate
+        Tc, Tm = cross_pose(0.0, cs, mate, math.radians(-20.0)), mate_pose(0.0, cs, mate)
+        (vc, fc), (vm, fm) = meshes["cross_gear"], meshes["cross_mate"]
+        pic = render([(vc @ Tc[:3, :3].T + Tc[:3, 3], fc, COLOURS["cross_gear"]),
+                      (vm @ Tm[:3, :3].T + Tm[:3, 3], fm, COLOURS["cross_mate"])], (520, 520), elev=20, azim=-60)
+        html = (f'<div class="grid"><figure>{R.img(pic, "cross gear and mate")}<figcaption>the mate ({mate.teeth} teeth) '
+                f"on the cross gear's pole, the cross gear tilted 20° about its ring axis (its free turn)</figcaption>"
+                "</figure></div>")
+        if "cross_mate.png" in files:
+            html += R.img(files["cross_mate.png"], "mid-plane and transmission error")
+        m = trace.stats.get("mate", {})
+        if m:
+            html += (f"<p>Ratio {m['ratio']:.9f} mate turns per cross-gear turn (design {m['ratio_design']:g}, off by "
+                     f"{m['ratio_error']:.1e}), transmission error {m['te_pp_um']:.2f} µm peak to peak at the cross gear's "
+                     f"pitch circle, backlash {m['backlash_mid_mm']:.3f} mm in the mid-plane.</p>")
+        f = result.figures.get("mate")
+        if f:
+            html += (f'<p class="{"ok" if f["max_overlap_mm3"] <= f["epsilon_mm3"] else "fail"}">{f["poses"]} poses: largest '
+                     f'overlap {f["max_overlap_mm3"]:.5f} mm³ (ε {f["epsilon_mm3"]:g} mm³).</p>'
+                     + R.table(["mate turn ψ °", "cross gear tilt °", "backlash °", "backlash mm (mate pitch circle)"],
+                               [[r["psi_deg"], r["tilt_deg"], r["backlash_deg"], r["backlash_mm"]] for r in f["backlash"]]))
+        return html
 
     def subtitle(self, spec: WristSpec) -> str:
         return f"wrist pair, I = {spec.I:g}"

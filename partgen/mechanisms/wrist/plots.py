@@ -60,3 +60,39 @@ def wrist_figure(I: float, A: float, theta_max: float, rows, png, svg=None, titl
     if svg is not None:
         fig.savefig(svg)
     plt.close(fig)
+
+
+def mate_figure(spec, rows, png) -> None:
+    """Two panels: the cross gear and its mate in mesh in their mid-plane (the cross gear's plane
+    x = 0), and the transmission error over the traced mate turns."""
+    from shapely.geometry import Polygon
+
+    from ...geometry.cross_gear import GROW
+    from ...geometry.cross_mate import mate_pose, mate_section
+    from ...geometry.gear import gear_outline
+
+    cs, mate = spec.cross, spec.mate
+    sec = mate_section(cs, mate)
+    T = mate_pose(0.0, cs, mate)
+    fig, ax = plt.subplots(1, 2, figsize=(13, 5.5))
+    mp = np.asarray(sec.exterior.coords)
+    P = np.column_stack([mp, np.zeros(len(mp))]) @ T[:3, :3].T + T[:3, 3]  # the mate's section in the cross gear's frame
+    ax[0].fill(P[:, 1], P[:, 2], facecolor="#e45756", edgecolor="#8c1c13", lw=0.8, alpha=0.6, label=f"mate, {mate.teeth} teeth")
+    prof = np.asarray(Polygon(gear_outline(cs).points).buffer(GROW, join_style="mitre").exterior.coords)
+    ax[0].fill(prof[:, 0], prof[:, 1], facecolor="#54a24b", edgecolor="#1d5e1d", lw=0.8, alpha=0.6, label=f"cross gear, {cs.teeth} teeth")
+    A, ra = mate.centre_distance(cs), mate.tip_radius(cs)
+    ax[0].set_xlim(-ra - 2, ra + 2)
+    ax[0].set_ylim(cs.root_radius - 4, A + 4)
+    ax[0].set_aspect("equal")
+    ax[0].set_xlabel("y (mm)")
+    ax[0].set_ylabel("z (mm), the cross gear's pole axis")
+    ax[0].set_title("mid-plane (x = 0): the mate's exact generated section")
+    ax[0].legend(fontsize=8, loc="lower right")
+    psi, phi, te = rows[:, 0], rows[:, 1], rows[:, 2]
+    ax[1].plot(np.degrees(psi), te * cs.pitch_radius * 1000, "o-", ms=3)
+    ax[1].set_xlabel("mate turn ψ (°)")
+    ax[1].set_ylabel("transmission error at the cross gear's pitch circle (µm)")
+    ax[1].set_title(f"ratio {cs.teeth}/{mate.teeth}: mate turns per cross-gear turn")
+    fig.tight_layout()
+    fig.savefig(png, dpi=100)
+    plt.close(fig)

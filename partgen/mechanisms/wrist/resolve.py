@@ -8,6 +8,7 @@ from ...design.gearing import ToothSystem, make_gear
 from ...design.involute import max_tip_fillet_coeff
 from ...errors import ConfigError
 from .spec import WristSpec
+from ...geometry.cross_mate import MateSpec
 from ...config.loader import LoadedDesign, printer_fit, printer_limits
 
 __all__ = ["resolve_wrist"]
@@ -50,7 +51,7 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
     if w.centre_distance_mm > 2 * reach:
         raise ConfigError(loaded.path, "wrist.centre_distance_mm", f"{w.centre_distance_mm:g} mm makes gears larger than "
                           f"the printer's {reach:g} mm envelope")
-    cross = None
+    cross = mate = None
     if w.cross_gear is not None:
         c = w.cross_gear
         if w.nominal_ratio != 1.0:
@@ -65,6 +66,8 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
         cross = make_gear(c.teeth, ToothSystem(module=c.module_mm, pressure_angle=alpha, cutter_tip_coeff=rho,
                                                profile_shift=0.0, backlash_per_gear=c.backlash_per_gear_mm,
                                                chord_tolerance=max(w.chord_tolerance_mm, 0.01)))
+        if c.mate is not None:
+            mate = _resolve_mate(loaded, c, cross)
     return WristSpec(
         name=d.name, I=w.nominal_ratio, A=w.centre_distance_mm, long_pitch=w.longitudinal_pitch_mm,
         ring_teeth=tuple(w.ring_teeth), dome_radius=w.tooth.radius_mm, tooth_height=w.tooth.height_mm,
@@ -74,4 +77,26 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
         press_clearance=printer_fit(loaded, w.press_fit_clearance_diametral_mm, "press_fit",
                                     "wrist.press_fit_clearance_diametral_mm"), base_height=w.base_height_mm, tol=w.chord_tolerance_mm,
         density=d.material.density_g_cm3 / 1000.0, material=d.material.name,
-        printer=printer_limits(p), cross=cross)
+        printer=printer_limits(p), cross=cross, mate=mate)
+
+
+def _resolve_mate(loaded: LoadedDesign, c, cross) -> MateSpec:
+    """``wrist.cross_gear.mate`` → MateSpec, refusing what cannot be cut or printed (exit 2, key path)."""
+    mt, key = c.mate, "wrist.cross_gear.mate"
+    m = c.module_mm
+    root = m * mt.teeth / 2 - 1.25 * m
+    if mt.teeth > c.teeth:
+        raise ConfigError(loaded.path, f"{key}.teeth", f"{mt.teeth} teeth: at most the cross gear's {c.teeth} (the mate "
+                          "sits on the cross gear's pole and must not wrap it)")
+    if mt.bore_diameter_mm / 2 + 1.5 > root:
+        raise ConfigError(loaded.path, f"{key}.bore_diameter_mm",
+                          f"Ø{mt.bore_diameter_mm:g} mm leaves under a 1.5 mm wall below the mate's root circle "
+                          f"(Ø{2 * root:.2f} mm): use at most {max(0.0, 2 * (root - 1.5)):.2f} mm")
+    if mt.face_width_mm > cross.pitch_radius:
+        raise ConfigError(loaded.path, f"{key}.face_width_mm", f"{mt.face_width_mm:g} mm is wider than the cross gear's "
+                          f"{cross.pitch_radius:g} mm pitch radius: the mate's faces would run off the ring teeth")
+    if mt.clearance_normal_mm > 0.25 * m:
+        raise ConfigError(loaded.path, f"{key}.clearance_normal_mm", f"{mt.clearance_normal_mm:g} mm is over a quarter "
+                          f"of the module ({0.25 * m:g} mm): the mate's teeth would be cut away")
+    return MateSpec(teeth=mt.teeth, face_width=mt.face_width_mm, bore_diameter=mt.bore_diameter_mm,
+                    clearance=mt.clearance_normal_mm, turn=math.radians(mt.turn_deg))

@@ -40,6 +40,27 @@ class Sweep(Strict):
         return self
 
 
+class CrossMate(Strict):
+    """The cross gear's mate: an ABENICS monopole gear whose axis is parallel to the cross gear's
+    ring axis x, on the cross gear's pole axis; its teeth are cut by the cross gear's ring teeth
+    about y swept through the mesh (docs/mechanisms/wrist.md)."""
+
+    teeth: Annotated[int, Field(ge=8, le=200)]
+    """Teeth of the mate (same module as the cross gear): the mate turns cross_gear.teeth / teeth times per turn of
+    the cross gear about the mate's axis."""
+    face_width_mm: Length
+    """Width of the mate's toothed face along its axis, centred on the cross gear's plane x = 0 (at most the cross
+    gear's pitch radius)."""
+    bore_diameter_mm: Length
+    """Diameter of the mate's round shaft bore (under its root circle by a 1.5 mm wall)."""
+    clearance_normal_mm: Gap = 0.05
+    """Clearance normal to the flanks: the cross gear's teeth are grown by this before they cut the mate, so the
+    mate's flanks stand this far off the cross gear's (its backlash, besides the cross gear's own thinning)."""
+    turn_deg: Annotated[float, Field(ge=5, le=80)] = 30.0
+    """Largest turn of the cross gear about the mate's axis, each way from its pole facing the mate: the mate's teeth
+    are cut to clear every ring tooth that meets it within this turn, and check covers it."""
+
+
 class CrossGear(Strict):
     """An ABENICS-style cross spherical gear (ring-involute teeth both ways) on a spherical pitch."""
 
@@ -51,6 +72,8 @@ class CrossGear(Strict):
     """Pressure angle of the cross gear's involute profile; 20 is standard."""
     backlash_per_gear_mm: Gap = 0.05
     """Each tooth thinned by this arc length at the pitch circle (circumferential)."""
+    mate: CrossMate | None = None
+    """Also build the cross gear's mate (an ABENICS monopole gear) and check the pair; none: the cross gear alone."""
 
     @field_validator("teeth")
     @classmethod

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 from ...core.printer import PrinterLimits
 from ...design.gearing import GearSpec
+from ...geometry.cross_mate import MateSpec
 
 __all__ = ["WristSpec"]
 
@@ -33,3 +34,4 @@ class WristSpec:
     material: str
     printer: PrinterLimits
     cross: GearSpec | None = None  # an ABENICS-style cross gear on the spherical pitch, or None
+    mate: MateSpec | None = None  # the cross gear's mate (an ABENICS monopole gear), or None
