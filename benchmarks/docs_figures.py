@@ -456,9 +456,61 @@ def autoplay(tmp: Path) -> dict:
     return out
 
 
+def contact(tmp: Path) -> dict:
+    """Contact along the face (checks.contact_pattern): the shipped mitre pair, crossed helical pair and
+    worm from `check --json`; the mitre pair with gear 2 moved ±0.2 mm off the plane of the shafts
+    (in-process, the test's mis-set), against the closed form of where its pattern ends."""
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.checks.contact3d import turned
+    from partgen.mechanisms.bevel.kit import BevelKit, build_bevel
+    from partgen.mechanisms.bevel.mechanism import contact_along_face, contact_angles
+
+    out = {}
+
+    def pattern(p: dict) -> dict:
+        return {"pct": r(100 * p["fraction"], 0), "from_pct": r(100 * p["from"], 0), "to_pct": r(100 * p["to"], 0),
+                "sits": p["sits"], "one_phase_min_pct": r(100 * p["instantaneous"]["min"], 0),
+                "one_phase_max_pct": r(100 * p["instantaneous"]["max"], 0), "face_mm": r(p["face_width_mm"], 1),
+                "phases": p["phases"]}
+
+    for key, cfg in (("mitre", "bevel_mitre"), ("crossed", "gear_train_crossed_helical"), ("worm", "gear_train_worm")):
+        c = partgen("check", f"configs/{cfg}.yaml", "-o", str(tmp / key))
+        f = c["figures"]["contact_along_face"]
+        out["gap_mm"] = f["gap_mm"]
+        if "gear2" in f:
+            out[key] = pattern(f["gear2"])
+            out[key + "_gear1"] = pattern(f["gear1"])
+        else:
+            out[key] = pattern(f)
+        out[key]["check_s"] = r(c["seconds"], 1)
+    spec = pipeline.load(ROOT / "configs" / "bevel_mitre.yaml").spec
+    kit0 = build_bevel(spec)
+    R, b, g = spec.pair.cone_distance, spec.gear2.face_width, out["gap_mm"]
+    thetas = 2 * math.pi / spec.gear1.teeth * np.arange(4) / 4
+    for name, e in (("offset_heel", 0.2), ("offset_toe", -0.2)):
+        class Offset(BevelKit):
+            def poses(self, theta: float = 0.0, e=e):
+                P = super().poses(theta)
+                T = P["gear2"].copy()
+                T[1, 3] += e
+                v = np.cross(spec.pair.axis2, (R - b / 2) * spec.pair.pitch_line)
+                return {**P, "gear2": turned(T, -e * v[1] / (v @ v))}
+        kit = Offset(kit0.spec, kit0.parts)
+        play = contact_angles(kit, thetas, 1e-5)
+        c = contact_along_face(kit, thetas, play)
+        out[name] = pattern(c)
+        s = R / (1 + g / e) if e > 0 else 1 / (1 / (R - b) + g / (e * R))
+        out[name]["closed_form_pct"] = r(100 * (s - (R - b)) / b, 1)
+        out[name]["measured_end_pct"] = r(100 * (c["from"] if e > 0 else c["to"]), 1)
+        out[name]["backlash_mm"] = r(float(np.mean(play["ahead"] - play["behind"])) * spec.gear2.pitch_radius, 3)
+    return out
+
+
 SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
             "tolerance": tolerance, "autoplay": autoplay, "sweep": sweep, "bennett": bennett,
-            "calibrate": calibrate, "wrist": wrist, "bevel": bevel,
+            "calibrate": calibrate, "wrist": wrist, "bevel": bevel, "contact": contact,
             "printers": printers, "jam": jam, "exact": exact, "play": play, "lissajous": lissajous}
 
 

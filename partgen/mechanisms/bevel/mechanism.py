@@ -25,11 +25,12 @@ from ...export.report import figure_png
 from ...geometry.helical import sector_prism
 from ...checks.contact3d import VOLUME_EPS, overlaps_over_pitch
 from ...checks.contact3d import contact_angles as _contact_angles, measured_ratio as _measured_ratio
+from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern, pattern_finding, pattern_text
 from ...geometry.measure import intersection, min_gap, oversize
 from .kit import BevelKit, BevelSpec, build_bevel, resolve_bevel
 from .schema import BevelDesign
 
-__all__ = ["Bevel", "MECHANISM", "mesh_overlaps", "contact_angles", "measured_ratio"]
+__all__ = ["Bevel", "MECHANISM", "mesh_overlaps", "contact_angles", "measured_ratio", "contact_along_face"]
 
 WEDGE_PITCHES = 2  # each gear is cut to ± this many of its pitches round the pitch line (contact ratio < 2)
 
@@ -76,6 +77,28 @@ def measured_ratio(kit: BevelKit, turns: int = 1, tol: float = 1e-8) -> tuple[fl
     """(ratio input/output measured, the driven flank's lag at θ = 0 and at θ = 2π·turns, rad)
     (``checks.contact3d.measured_ratio``)."""
     return _measured_ratio(lambda t: _near_mesh(kit, t), kit.spec.angle2, *_reach_guess(kit), turns, tol)
+
+
+def contact_along_face(kit: BevelKit, thetas, play: dict) -> dict:
+    """Where along the face, toe to heel, gear 2's loaded flank comes within ``CONTACT_GAP_MM`` (along its
+    heel pitch circle) of gear 1's at gear 1's turns ``thetas``, ``play`` their ``contact_angles``
+    (``checks.contact_pattern``). The coordinate: the cone distance in gear 2's frame, s = ρ sin δ_2 − a
+    cos δ_2 (ρ from its axis, a along it from the apex), which is R − b on the toe's back cone and R on
+    the heel's."""
+    s = kit.spec
+    d = s.gear2.pitch_angle
+    sd, cd = math.sin(d), math.cos(d)
+
+    def cone_distance(points: np.ndarray, Ta: np.ndarray, Tb: np.ndarray) -> np.ndarray:
+        local = (points - Tb[:3, 3]) @ Tb[:3, :3]
+        return np.hypot(local[:, 0], local[:, 1]) * sd - local[:, 2] * cd
+
+    R, b = s.pair.cone_distance, s.gear2.face_width
+    face = Face(cone_distance, R - b, R, ("the toe", "the heel"), "the face (toe to heel)")
+    reach, _ = _reach_guess(kit)
+    p = contact_pattern(lambda t: _near_mesh(kit, t), thetas, play["ahead"], play["overlap_mm3"],
+                        CONTACT_GAP_MM / s.gear2.pitch_radius, [face], reach)[0]
+    return {"gap_mm": CONTACT_GAP_MM, "gap_along": "gear 2's heel pitch circle", **p}
 
 
 class Bevel:
@@ -169,9 +192,12 @@ class Bevel:
         if radial <= 0:
             res.add(Finding("fit", "fail", f"the bores grip their shafts ({radial:.3f} mm radial gap)", ("gear1", "base"),
                             value=radial, unit="mm", key="shafts.running_clearance_diametral_mm"))
+        contact = contact_along_face(kit, thetas, play)
+        res.add(pattern_finding(contact, ("gear1", "gear2"), "gears.teeth",
+                                hint="the flanks are not conjugate along the face (the solids or their poses)"))
         te = play["ahead"] * r2
         res.figures.update(samples=n, phases_over="one tooth pitch of gear 1",
-                           max_overlap_mm3=float(play["overlap_mm3"].max()),
+                           max_overlap_mm3=float(play["overlap_mm3"].max()), contact_along_face=contact,
                            backlash_mm={"min": float(backlash.min()), "max": float(backlash.max()),
                                         "designed": designed_backlash(spec)},
                            transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
@@ -216,7 +242,8 @@ class Bevel:
                  "transmission_error_rad": {"mean": float(te.mean()), "peak_to_peak": float(np.ptp(te))},
                  "transmission_error_mm": {"mean": float(te.mean() * r2), "peak_to_peak": float(np.ptp(te) * r2)},
                  "backlash_mm": {"min": float(backlash.min()), "max": float(backlash.max()),
-                                 "designed": designed_backlash(spec)}}
+                                 "designed": designed_backlash(spec)},
+                 "contact_along_face": contact_along_face(kit, thetas[:-1], {k: v[:-1] for k, v in play.items()})}
         files = []
         if out is not None:
             (out / "transmission.png").write_bytes(_figure(spec, thetas, te * r2, backlash))
@@ -256,6 +283,7 @@ class Bevel:
                  f"  largest overlap {f['max_overlap_mm3']:.6f} mm³; backlash {b['min']:.3f}–{b['max']:.3f} mm along "
                  f"gear 2's heel pitch circle (designed {b['designed']:.3f} mm); transmission error "
                  f"{1000 * te['peak_to_peak']:.1f} µm peak to peak",
+                 "  " + pattern_text(f["contact_along_face"]),
                  "  closest: " + ", ".join(f"{k} {v:.2f} mm" for k, v in f["closest_mm"].items())]
         return "\n".join(lines + check_footer(result, seconds, folder))
 
@@ -266,7 +294,8 @@ class Bevel:
                  f"{100 * s['instantaneous_ratio_deviation']:.3f} % of it",
                  f"  transmission error {1000 * s['transmission_error_mm']['peak_to_peak']:.1f} µm peak to peak along "
                  f"gear 2's heel pitch circle over a tooth ({s['samples']} phases); backlash "
-                 f"{s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm"]
+                 f"{s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm",
+                 "  " + pattern_text(s["contact_along_face"])]
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)

@@ -24,13 +24,14 @@ from ...errors import DesignError
 from ...export.report import figure_png
 from ...checks.contact3d import VOLUME_EPS, overlaps_over_pitch
 from ...checks.contact3d import contact_angles as _contact_angles, measured_ratio as _measured_ratio
+from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern, pattern_finding, pattern_text
 from ...geometry.measure import intersection, min_gap, oversize
 from ...geometry.helical import cylinder_along
 from ...design.crossed_helical import efficiency, friction_angle
 from .kit import CrossedKit, CrossedSpec, build_crossed, is_worm, resolve_crossed
 from .schema import CrossedHelicalDesign
 
-__all__ = ["CrossedHelical", "MECHANISM", "mesh_overlaps", "contact_angles"]
+__all__ = ["CrossedHelical", "MECHANISM", "mesh_overlaps", "contact_angles", "contact_along_face"]
 
 
 def _near_mesh(kit: CrossedKit, theta: float):
@@ -72,6 +73,33 @@ def measured_ratio(kit: CrossedKit, turns: int = 1, tol: float = 1e-8) -> tuple[
     """(ratio input/output measured, the driven flank's lag at θ = 0 and at θ = 2π·turns, rad)
     (``checks.contact3d.measured_ratio``)."""
     return _measured_ratio(lambda t: _near_mesh(kit, t), kit.spec.angle2, *_reach_guess(kit), turns, tol)
+
+
+def _along_axis(which: int):
+    """A face coordinate: the points along gear ``which``'s axis (0: gear 1, 1: gear 2) from its mid-plane, mm."""
+    def coord(points: np.ndarray, Ta: np.ndarray, Tb: np.ndarray) -> np.ndarray:
+        T = (Ta, Tb)[which]
+        return (points - T[:3, 3]) @ T[:3, 2]
+    return coord
+
+
+def contact_along_face(kit: CrossedKit, thetas, play: dict) -> dict:
+    """Where along the faces gear 2's loaded flank comes within ``CONTACT_GAP_MM`` (along its pitch
+    circle) of gear 1's at gear 1's turns ``thetas``, ``play`` their ``contact_angles``
+    (``checks.contact_pattern``): along gear 2's face (its axis, from the block1 end to the block2 end:
+    the figure the finding judges) and along gear 1's (its axis, bottom to top: a worm's length), as
+    ``{"gear2": ..., "gear1": ...}``."""
+    s = kit.spec
+    b1, b2 = s.face_width
+    worm = is_worm(s.pair)
+    faces = [Face(_along_axis(1), -b2 / 2, b2 / 2, ("the block1 end", "the block2 end"),
+                  "the wheel's face" if worm else "gear 2's face"),
+             Face(_along_axis(0), -b1 / 2, b1 / 2, ("the bottom", "the top"),
+                  "the worm's length" if worm else "gear 1's face")]
+    reach, _ = _reach_guess(kit)
+    p2, p1 = contact_pattern(lambda t: _near_mesh(kit, t), thetas, play["ahead"], play["overlap_mm3"],
+                             CONTACT_GAP_MM / s.pair.pitch_radius(1), faces, reach)
+    return {"gap_mm": CONTACT_GAP_MM, "gap_along": "gear 2's pitch circle", "gear2": p2, "gear1": p1}
 
 
 class CrossedHelical:
@@ -194,10 +222,13 @@ class CrossedHelical:
         if radial <= 0:
             res.add(Finding("fit", "fail", f"the bores grip their shafts ({radial:.3f} mm radial gap)", ("gear1", "base"),
                             value=radial, unit="mm", key="shafts.running_clearance_diametral_mm"))
+        contact = contact_along_face(kit, thetas, play)
+        res.add(pattern_finding(contact["gear2"], ("gear1", "gear2"), "gears.face_width_mm[1]",
+                                hint=self._point_contact(spec)))
         te = play["ahead"] * r2
         res.figures.update(samples=n, phases_over="one tooth pitch of gear 1",
                            centre_distance_mm=round(spec.centre_distance, 6),
-                           max_overlap_mm3=float(play["overlap_mm3"].max()),
+                           max_overlap_mm3=float(play["overlap_mm3"].max()), contact_along_face=contact,
                            backlash_mm={"min": float(backlash.min()), "max": float(backlash.max()),
                                         "designed": self._designed_backlash(spec)},
                            transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
@@ -211,6 +242,13 @@ class CrossedHelical:
         res.add(*found)
         res.figures["printability"] = {**on_bed, "bores": bores}
         return res
+
+    def _point_contact(self, spec: CrossedSpec) -> str:
+        """What a short contact pattern means here (the finding's hint)."""
+        if is_worm(spec.pair):
+            return ("a plain helical wheel touches the worm at a point, which crosses little of the wheel's face "
+                    "over a turn (a throated wheel wraps round the worm)")
+        return "crossed helical gears touch at a point: their path of contact crosses only part of the face"
 
     def tolerance_model(self, spec: CrossedSpec, kit: CrossedKit, result: Result, accuracy_mm: float,
                         seated: bool = True):
@@ -242,7 +280,8 @@ class CrossedHelical:
                  "transmission_error_rad": {"mean": float(te.mean()), "peak_to_peak": float(np.ptp(te))},
                  "transmission_error_mm": {"mean": float(te.mean() * r2), "peak_to_peak": float(np.ptp(te) * r2)},
                  "backlash_mm": {"min": float(backlash.min()), "max": float(backlash.max()),
-                                 "designed": self._designed_backlash(spec)}}
+                                 "designed": self._designed_backlash(spec)},
+                 "contact_along_face": contact_along_face(kit, thetas[:-1], {k: v[:-1] for k, v in play.items()})}
         files = []
         if out is not None:
             (out / "transmission.png").write_bytes(_figure(spec, thetas, te * r2, backlash))
@@ -281,6 +320,7 @@ class CrossedHelical:
                  f"  largest overlap {f['max_overlap_mm3']:.6f} mm³; backlash {b['min']:.3f}–{b['max']:.3f} mm along "
                  f"gear 2's pitch circle (designed {b['designed']:.3f} mm); transmission error "
                  f"{1000 * te['peak_to_peak']:.1f} µm peak to peak",
+                 *("  " + pattern_text(f["contact_along_face"][g]) for g in ("gear2", "gear1")),
                  "  closest: " + ", ".join(f"{k} {v:.2f} mm" for k, v in f["closest_mm"].items()),
                  "  " + self._locking_text(spec)]
         return "\n".join(lines + check_footer(result, seconds, folder))
@@ -292,7 +332,8 @@ class CrossedHelical:
                  f"{100 * s['instantaneous_ratio_deviation']:.3f} % of it",
                  f"  transmission error {1000 * s['transmission_error_mm']['peak_to_peak']:.1f} µm peak to peak along "
                  f"gear 2's pitch circle over a tooth ({s['samples']} phases); backlash "
-                 f"{s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm"]
+                 f"{s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm",
+                 *("  " + pattern_text(s["contact_along_face"][g]) for g in ("gear2", "gear1"))]
         if folder:
             lines.append(f"plots: {folder}/{', '.join(trace.files)}")
         return "\n".join(lines)
