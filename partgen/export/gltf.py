@@ -33,6 +33,8 @@ from __future__ import annotations
 
 import json
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 import struct
 from dataclasses import dataclass
 
@@ -270,11 +272,14 @@ def assembly_glb(kit: Kit, instances: list[Instance], motion: Motion | None = No
                  for role in roles]
     b = _Bin()
     meshes, mesh_of = [], {}
+    distinct = list({id(it.mesh): it.mesh for it in instances}.values())
+    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:  # numpy lets go of the GIL
+        shaded = dict(zip(map(id, distinct), pool.map(_shaded, distinct)))  # each mesh its own: no shared state
     for it in instances:
         key = id(it.mesh)
         if key in mesh_of:
             continue
-        v, nrm, f = _shaded(it.mesh)
+        v, nrm, f = shaded[key]
         pos = b.add(v, "VEC3", _FLOAT, _ARRAY_BUFFER, minmax=True)
         nor = b.add(nrm, "VEC3", _FLOAT, _ARRAY_BUFFER)
         idx = b.add(f.reshape(-1), "SCALAR", _UINT16 if f.dtype == np.uint16 else _UINT32, _ELEMENT_ARRAY_BUFFER)
