@@ -15,7 +15,8 @@ from partgen import pipeline
 from partgen.cli.main import main
 from partgen.design import involute
 from partgen.mechanisms.gear_pair.kit import build_pair
-from partgen.mechanisms.gear_pair.mechanism import MECHANISM, flank_play
+from partgen.mechanisms.gear_pair.checks import flank_play
+from partgen.mechanisms.gear_pair.mechanism import MECHANISM
 
 ROOT = Path(__file__).resolve().parents[1]
 CFG = ROOT / "configs" / "gear_pair.yaml"

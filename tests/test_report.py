@@ -110,7 +110,7 @@ def test_page_shows_what_play_costs(page, kit_of):
     the figures trace computes for this kit."""
     import numpy as np
 
-    from partgen.mechanisms.gear_chain.mechanism import pen_error_band
+    from partgen.mechanisms.gear_chain.trace import pen_error_band
 
     text = page.read_text()
     assert ">What play costs</h2>" in text

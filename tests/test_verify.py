@@ -121,7 +121,7 @@ def test_write_kit_raises_mesh_error_naming_part_and_design_and_writes_nothing(t
     cheapest kit, renamed: write_kit, which refuses it, is the same for every mechanism.)"""
     import dataclasses
 
-    from partgen.mechanisms.gear_pair import mechanism as pair
+    from partgen.mechanisms.gear_pair import kit as pair
 
     real = pair.build_pair
 

@@ -22,6 +22,7 @@ import numpy as np
 from shapely.geometry import Point
 
 from . import kit as A
+from .params import BennettParams
 from ...design import bennett_butterfly as bbf
 from ...geometry.bennett_link import tube
 from ...geometry.measure import intersection, oversize
@@ -29,7 +30,7 @@ from ...geometry.printing import bore_open, footprint, shells
 from ...geometry.solid import mesh_arrays
 from ...core.findings import Finding, Result
 
-__all__ = ["check_bennett", "balance_figures", "stability"]
+__all__ = ["check", "check_text", "check_bennett", "balance_figures", "stability"]
 
 
 def _name(i: int) -> str:
@@ -271,3 +272,45 @@ def _check_stacks(kit: A.BennettKit, frames: dict, angles: np.ndarray, res: Resu
                                     (_name(a), _name(b)), theta=float(angles[k]), value=v, unit="mm3"))
                     break
     res.figures["joint_stack_overlap_mm3"] = worst_v
+
+
+def check(spec: BennettParams, kit: A.BennettKit, samples: int | None = None, progress=None):
+    """Balance over the input grid, interference over the workspace, stacks, pins, printing, the base."""
+    steps = 7  # the named steps check_bennett announces
+    done = [0]
+
+    def say(step: str) -> None:
+        done[0] += 1
+        if progress:
+            progress(min(done[0], steps), steps)
+    return check_bennett(kit, say)
+
+
+def _check_text(p, result, seconds: float) -> str:
+    """What `check` prints for a Bennett kit."""
+    f = result.figures
+    b = f["balance_mm"]
+    short = max(v for k, v in b.items() if k.startswith("one_slug_short"))
+    st = f["base"]
+    lines = [f"{p.name}: balance over a {b['grid'][0]} × {b['grid'][1]} grid of (q1, angle between links 1 "
+             f"and 4); interference over {f['interference_samples']} shape angles, step {f['step_deg']:.2f}°",
+             f"  centre of mass from S: as printed {b['fdm']:.4f} mm, printed solid {b['solid']:.4f} mm, "
+             f"infill off by {100 * p.infill_error:g} points {b['fdm_infill_error']:.3f} mm, "
+             f"binder left out {b['no_binder']:.3f} mm, a pocket one slug short {short:.1f} mm"
+             + (f", what-if heavier links {b['what_if_mass_scale']:.3f} mm" if "what_if_mass_scale" in b else ""),
+             f"  least clearance {f['least_clearance_mm']:.2f} mm ({' – '.join(f['least_clearance_parts'])} at "
+             f"{f['least_clearance_angle_deg']:.1f}°); stacked bosses overlap {f['joint_stack_overlap_mm3']:.3f} mm³; "
+             + (f"moves freely from {f['free_range_deg'][0]:.1f}° to {f['free_range_deg'][1]:.1f}°"
+                if math.isfinite(f["free_range_deg"][0]) else "capsule hulls overlap at the home pose"),
+             f"  pins (stock lengths): {', '.join(f'{n} × {k} mm' for k, n in f['pins']['count_by_length'].items())}; "
+             f"base: {st['footprint_mm2']:.0f} mm² on the bed, stands to {st['tip_angle_deg']:.1f}° of tilt, links "
+             f"{st['links_above_table_mm']:.0f} mm above the table",
+             "  support (mm²): " + ", ".join(f"{k} {v['support_mm2']:.0f}" for k, v in f["printing"].items())]
+    lines += [f"  FAIL  {x.check}: {x.message}" for x in result.findings if x.severity == "fail"]
+    lines.append(f"{'OK' if result.ok else 'FAILED'} in {seconds:.1f} s")
+    return "\n".join(lines)
+
+
+def check_text(spec, result, folder, seconds: float) -> str:
+    return _check_text(spec, result, seconds) + (f"; {result.figures.get('plates', '?')} build plate(s) in {folder}/"
+                                                 if folder else "")

@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...config.loader import LoadedDesign
+from ...config.yamlio import dump_yaml
 from ...core.protocol import ParamsKit
 from ...core.transforms import frame_z
 from ...core.quantise import quantise
@@ -28,6 +30,7 @@ from ...geometry.bennett_link import LINK_PHASES, Cup, base_solid, link_solid, p
 from ...geometry.mass import printed_mass
 from ...geometry.parts import Part
 from ...core.parts import Stock
+from ...errors import DesignError
 from ...geometry.printing import best_orientation
 from ...geometry.solid import cylinder, float32_sound, mesh_arrays, print_arrays
 from .layout import (Sweep, choose_offsets, coarse_samples, link_capsules, own_clearance, part_capsules,
@@ -38,6 +41,8 @@ from .parts import (BASE, Fill, Layout, base_features, choose_fill, cup_of, cw_n
 Solid = object  # a manifold3d.Manifold, made by geometry/
 
 __all__ = ["BennettKit", "LinkMass", "PrintPose", "build_bennett", "com_deviation", "fill_points", "grid",
+           # the protocol's kit members and what the kit folder holds
+           "build", "refuse", "design_summary", "kit_files", "bill", "bought", "layout_yaml",
            # the layout and the parts, for the checks and the tests
            "BASE", "Layout", "Sweep", "choose_offsets", "coarse_samples", "default_layout", "home_inputs",
            "link_capsules", "link_features", "own_clearance", "part_capsules", "part_reach", "point_speed", "shape_samples",
@@ -423,3 +428,106 @@ def grid(p: BennettParams) -> tuple[np.ndarray, np.ndarray]:
     ang = np.linspace(*p.workspace, ns)
     Q1, A = np.meshgrid(q1, ang, indexing="ij")
     return home_inputs(A.ravel(), Q1.ravel())
+
+
+# --- the protocol's kit members: build, refuse, what the kit folder holds -----------------------------
+def build(spec: BennettParams, progress=None) -> BennettKit:
+    try:
+        kit = build_bennett(spec, progress)
+    except DesignError as e:
+        raise DesignError(e.problem, e.key_path or "counterweights") from None
+    return kit
+
+
+def refuse(spec: BennettParams, kit: BennettKit) -> None:
+    from ...geometry.measure import oversize
+
+    for part, ext in oversize(kit.parts, spec.printer.envelope, tol=0.0):
+        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                          "linkage.a_mm")
+
+
+def layout_yaml(kit: BennettKit) -> dict:
+    """The kit's stack layout as the config's ``parts.layout`` (so a kit folder rebuilds without a search)."""
+    return {"layers": {i: int(kit.layout.layer[i]) for i in range(1, 13)},
+            "shifts_mm": {j: float(v) for j, v in sorted(kit.layout.shift.items()) if v}}
+
+
+def _r(x, nd=4):
+    return [round(float(v), nd) for v in x] if np.ndim(x) else round(float(x), nd)
+
+
+def bill(kit: BennettKit) -> list[dict]:
+    """Every printed part: its masses (g) solid and as printed (FDM) with their centres in its STL
+    frame, its pocket's fill and its pins (g), how it prints (support mm², bed contact mm², height)."""
+    rows = []
+    parts = [(f"link{i:02d}", kit.masses[i], kit.layout.layer[i], kit.pins[i]) for i in range(1, 13)]
+    parts.append(("base", kit.base_mass, 0, kit.pins[BASE]))
+    for name, lm, layer, pins in parts:
+        pose = kit.printing[name]
+        T = np.linalg.inv(pose.body_from_print)
+        stl = lambda c: T[:3, :3] @ np.asarray(c, float) + T[:3, 3]  # noqa: E731
+        i = None if name == "base" else int(name[4:])
+        rows.append({"part": name, "layer": layer, "solid_g": lm.solid_mass, "solid_centre_mm": _r(stl(lm.solid_centre)),
+                     "printed_g": lm.fdm_mass, "printed_centre_mm": _r(stl(lm.fdm_centre)),
+                     "fill_g": kit.fills[i].mass if i in kit.fills else 0.0, "pins_g": sum(m for m, _ in pins),
+                     "support_mm2": round(pose.overhang_mm2, 1), "bed_contact_mm2": round(pose.contact_mm2, 1),
+                     "print_height_mm": round(pose.height_mm, 1)})
+    return rows
+
+
+def bought(kit: BennettKit) -> list[dict]:
+    """What to buy: the pins by stock length, each pocket's slugs and the binder (quantity, stock size)."""
+    p = kit.params
+    pins: dict[float, list[str]] = {}
+    for part in kit.parts:
+        if part.role == "pin":
+            info = dict(part.info)
+            pins.setdefault(info["length_mm"], []).append(info["joint"])
+    rows = [{"item": f"{p.pin_kind} Ø{2 * p.pin_radius:g} × {L:g} mm", "quantity": len(js), "for": ", ".join(js),
+             "mass_g": len(js) * p.pin_density * math.pi * p.pin_radius ** 2 * L} for L, js in sorted(pins.items())]
+    slugs: dict[float, list[tuple[str, int]]] = {}
+    for i, f in sorted(kit.fills.items()):
+        slugs.setdefault(f.length, []).append((f"link{i:02d}", f.count))
+    for L, uses in sorted(slugs.items()):
+        f = _slug_fill(kit, L)
+        rows.append({"item": f"{p.slug_kind} Ø{f.diameter:g} × {L:g} mm", "quantity": sum(n for _, n in uses),
+                     "for": ", ".join(f"{n} in {name}" for name, n in uses),
+                     "mass_g": sum(n for _, n in uses) * f.slug_mass})
+    binder = sum(f.binder_volume for f in kit.fills.values())
+    rows.append({"item": p.binder_name, "quantity": f"{binder / 1000:.2f} cm³",
+                 "for": "the slugs' clearance in the three pockets", "mass_g": sum(f.binder_mass for f in kit.fills.values())})
+    return rows
+
+
+def _slug_fill(kit: BennettKit, length: float):
+    return next(f for f in kit.fills.values() if f.length == length)
+
+
+def design_summary(kit: BennettKit) -> dict:
+    """The manifest's "design": the linkage, the layout, the counterweights, the bill, what to buy, the balance."""
+    from .checks import balance_figures
+
+    p = kit.params
+    bal = {k: v for k, v in balance_figures(kit).items() if k not in ("trace", "grid")}
+    fills = {}
+    for part in kit.parts:
+        if part.role == "counterweight fill":
+            info = dict(part.info)
+            fills[info["part"]] = {k: v for k, v in info.items() if k != "part"}
+            fills[info["part"]]["pocket_offset_mm"] = kit.figures["pocket_offsets_mm"][int(info["part"][4:])]
+    return {"name": p.name, "kind": "bennett_butterfly",
+            "a_mm": p.bb.a, "b_mm": p.bb.b, "alpha_deg": math.degrees(p.bb.alpha), "beta_deg": math.degrees(p.bb.beta),
+            "scales": [1.0, p.bb.s2, p.bb.s3, p.bb.s4], "home_angle_deg": math.degrees(p.home),
+            "workspace_deg": [math.degrees(x) for x in p.workspace], "layout": layout_yaml(kit),
+            "counterweights": fills, "bill": bill(kit), "bought": bought(kit), "infill_percent": 100 * p.infill,
+            "overhang_angle_deg": math.degrees(p.overhang_angle), "balance_tolerance_mm": p.tolerance,
+            "balance_mm": bal, **{k: v for k, v in kit.figures.items() if k not in ("pocket_offsets_mm", "next_pockets")}}
+
+
+def kit_files(spec: BennettParams, kit: BennettKit, raw: LoadedDesign) -> dict[str, bytes]:
+    """design.yaml with the chosen layout pinned (a kit folder rebuilds without a search), printer.yaml."""
+    data = raw.document()
+    data["printer"] = "printer.yaml"
+    data.setdefault("parts", {})["layout"] = layout_yaml(kit)
+    return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}

@@ -35,10 +35,10 @@ ANGLES = 12  # positions of gear 1 over one tooth pitch
 
 def exact_shared(kit, result, model, seated: bool = True, angles: int = ANGLES) -> dict:
     """What every print task needs (picklable: sections as WKB, numbers)."""
-    from .mechanism import _outline
+    from .checks import outline
 
     s = kit.spec
-    return {"p1": shapely.to_wkb(_outline(kit, "gear1")), "p2": shapely.to_wkb(_outline(kit, "gear2")),
+    return {"p1": shapely.to_wkb(outline(kit, "gear1")), "p2": shapely.to_wkb(outline(kit, "gear2")),
             "a": float(s.centre_distance), "z1": s.gear1.teeth, "z2": s.gear2.teeth, "module": s.gear1.system.module,
             "phase2": float(s.phase2), "gap": float(result.figures["radial_gap_mm"]),
             "gaps": [float(x) for x in result.figures.get("radial_gaps_mm", [result.figures["radial_gap_mm"]] * 2)],

@@ -1,5 +1,5 @@
 """A spur gear pair as parts: a base plate carrying two posts at the pair's centre distance, and two
-gears turning on them; the resolver from the validated YAML (deg → rad, diametral clearance)."""
+gears turning on them; what the kit folder holds (the manifest's design, design.yaml, printer.yaml)."""
 
 from __future__ import annotations
 
@@ -8,104 +8,19 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...config.loader import LoadedDesign, printer_fit, printer_limits
-from ...config.schema import AUTO_PLAY_START_MM
+from ...config.loader import LoadedDesign
+from ...config.yamlio import dump_yaml
 from ...core.parts import Bore, Part
-from ...core.printer import PrinterLimits
 from ...core.protocol import SpecKit
 from ...core.transforms import pose_z
-from ...design.gearing import GearSpec, ToothSystem, centre_distance, make_gear
-from ...design.rules import ToothSystemError, check_generable
-from ...errors import ConfigError
+from ...errors import DesignError
+from ...geometry.measure import oversize
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, base_plate, bored_gear, shaft
 from ...geometry.printing import least_support_flip
+from .resolve import PairSpec
 
-__all__ = ["PairSpec", "PairKit", "resolve_pair", "build_pair"]
-
-
-@dataclass(frozen=True)
-class PairSpec:
-    """A gear pair ready to build (mm, rad, g/mm³)."""
-
-    name: str
-    gear1: GearSpec  # the driver (input)
-    gear2: GearSpec  # the driven gear (output)
-    centre_distance: float
-    face_width: float
-    axle_radius: float
-    bore_radius: float
-    axial_gap: float
-    base_thickness: float
-    base_margin: float
-    samples: int
-    plate_margin: float
-    density: float
-    material: str
-    printer: PrinterLimits
-    tol: float
-    bore_radii: tuple[float, float] | None = None  # each gear's own bore (its own clearance); None: bore_radius
-
-    def bore_of(self, gear: str) -> float:
-        """The bore radius of ``gear`` ("gear1", "gear2"), mm."""
-        return self.bore_radii[("gear1", "gear2").index(gear)] if self.bore_radii else self.bore_radius
-
-    @property
-    def phase2(self) -> float:
-        """Gear 2's turn at rest (rad) so a tooth space of it faces gear 1's tooth 0 on the line of centres."""
-        return 0.0 if self.gear2.teeth % 2 else math.pi / self.gear2.teeth
-
-    def output_angle(self, theta) -> np.ndarray:
-        """Gear 2's nominal angle (rad) when gear 1 has turned ``theta`` (rad)."""
-        return self.phase2 - np.asarray(theta) * self.gear1.teeth / self.gear2.teeth
-
-
-def resolve_pair(loaded: LoadedDesign) -> PairSpec:
-    d, p = loaded.design, loaded.printer
-    g = d.gears
-    backlash, fit = _own(loaded, "gears.backlash_per_gear_mm", g.backlash_per_gear_mm), \
-        _own(loaded, "axles.clearance_diametral_mm", d.axles.clearance_diametral_mm)
-    system = ToothSystem(module=g.module_mm, pressure_angle=math.radians(g.pressure_angle_deg),
-                         backlash_per_gear=AUTO_PLAY_START_MM if backlash[0] == "auto" else backlash[0],
-                         profile_shift=None if g.profile_shift == "auto" else float(g.profile_shift),
-                         chord_tolerance=g.chord_tolerance_mm)
-    g1, g2 = (make_gear(z, system if own is None else replace(system, backlash_per_gear=own))
-              for z, own in zip(g.teeth, backlash[1:]))
-    for i, gear in enumerate((g1, g2)):
-        try:
-            check_generable(gear)
-        except ToothSystemError as e:
-            raise ConfigError(loaded.path, "gears.profile_shift" if e.field == "profile_shift" else f"gears.teeth[{i}]",
-                              e.problem) from None
-    bore = d.axles.diameter_mm / 2 + printer_fit(loaded, fit[0], "running", "axles.clearance_diametral_mm") / 2
-    bores = tuple(bore if own is None else d.axles.diameter_mm / 2 + own / 2 for own in fit[1:])
-    for i, gear in enumerate((g1, g2)):
-        if bores[i] + p.min_wall >= gear.root_radius:
-            raise ConfigError(loaded.path, f"gears.teeth[{i}]", f"a {gear.teeth}-tooth gear's root circle "
-                              f"(Ø{2 * gear.root_radius:.2f} mm) leaves less than the printer's {p.min_wall:g} mm wall "
-                              f"around its Ø{2 * bores[i]:.2f} mm bore: more teeth, a larger module or a thinner axle")
-    if 2 * min(bores) < p.min_hole_diameter_mm:
-        raise ConfigError(loaded.path, "axles.diameter_mm", f"the bore (Ø{2 * min(bores):.2f} mm) is below the printer's "
-                          f"smallest reliable hole ({p.min_hole_diameter_mm:g} mm)")
-    a = centre_distance(g1, g2)
-    span = a + g1.tip_radius + g2.tip_radius + 2 * d.base.margin_mm
-    if span > math.hypot(*p.build_envelope_mm[:2]):
-        raise ConfigError(loaded.path, "gears.module_mm", f"the base comes out {span:.0f} mm long: no plate that long "
-                          "fits the printer")
-    return PairSpec(d.name, g1, g2, a, g.face_width_mm, d.axles.diameter_mm / 2, bore, d.axles.axial_gap_mm,
-                    d.base.thickness_mm, d.base.margin_mm, d.checks.samples, d.checks.plate_margin_mm,
-                    d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p), g.chord_tolerance_mm,
-                    bores if fit[1:] != (None, None) else None)
-
-
-def _own(loaded: LoadedDesign, key: str, value) -> tuple:
-    """(the default, gear1's own or None, gear2's own or None) of a play that may be a mapping per gear."""
-    if not isinstance(value, dict):
-        return value, None, None
-    for name in value:
-        if name not in ("default", "gear1", "gear2"):
-            raise ConfigError(loaded.path, f"{key}.{name}", f"the pair has no gear {name!r}: it has gear1, gear2")
-    return value["default"], value.get("gear1"), value.get("gear2")
+__all__ = ["PairKit", "build_pair", "build", "refuse", "design_summary", "kit_files"]
 
 
 @dataclass(frozen=True)
@@ -141,3 +56,33 @@ def build_pair(s: PairSpec, progress=None) -> PairKit:
     # each lies on its larger flat face unless the other needs less support
     parts = [replace(p, print_flip=least_support_flip(p.solid, s.printer.overhang_deg)) for p in parts]
     return PairKit(s, tuple(parts))
+
+
+def build(spec: PairSpec, progress=None) -> PairKit:
+    try:
+        return build_pair(spec, progress)
+    except ValueError as e:
+        raise DesignError(str(e), "axles.diameter_mm") from None
+
+
+def refuse(spec: PairSpec, kit: PairKit) -> None:
+    for part, ext in oversize(kit.parts, spec.printer.envelope):
+        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                          "gears.module_mm")
+
+
+def design_summary(kind: str, spec: PairSpec, kit: PairKit) -> dict:
+    r6 = lambda x: float(round(float(x), 6))  # noqa: E731
+    g1, g2 = spec.gear1, spec.gear2
+    return {"name": spec.name, "kind": kind, "module_mm": g1.system.module,
+            "pressure_angle_deg": r6(math.degrees(g1.system.pressure_angle)), "teeth": [g1.teeth, g2.teeth],
+            "ratio": f"{g2.teeth}/{g1.teeth}", "profile_shift": [r6(g1.profile_shift), r6(g2.profile_shift)],
+            "centre_distance_mm": r6(spec.centre_distance), "face_width_mm": spec.face_width,
+            "axle_diameter_mm": 2 * spec.axle_radius, "bore_diameter_mm": r6(2 * spec.bore_radius),
+            "printer": spec.printer.name, "material": spec.material, "density_g_cm3": r6(spec.density * 1000)}
+
+
+def kit_files(spec: PairSpec, kit: PairKit, raw: LoadedDesign) -> dict[str, bytes]:
+    data = raw.document()
+    data["printer"] = "printer.yaml"
+    return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
