@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-__all__ = ["RESOLUTION_MM", "quantise", "quantised", "close"]
+__all__ = ["RESOLUTION_MM", "quantise", "quantised", "close", "r6"]
 
 RESOLUTION_MM = 1e-6
 
@@ -42,3 +42,9 @@ def quantised(values, step: float = RESOLUTION_MM) -> tuple:
 def close(a: float, b: float, step: float = RESOLUTION_MM) -> bool:
     """Whether ``a`` and ``b`` are one value at ``step`` resolution."""
     return quantise(a, step) == quantise(b, step)
+
+
+def r6(x) -> float:
+    """``x`` rounded to 6 decimals, a Python float: how manifests and JSON reports write a length
+    (mm: a micrometre's thousandth) or an angle."""
+    return float(round(float(x), 6))

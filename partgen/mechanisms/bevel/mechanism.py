@@ -19,6 +19,7 @@ from ...checks.footer import check_footer
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
+from ...core.quantise import r6
 from ...core.protocol import Motion, Trace
 from ...errors import DesignError
 from ...export.report import figure_png
@@ -128,7 +129,6 @@ class Bevel:
         return []
 
     def _numbers(self, spec: BevelSpec) -> dict:
-        r6 = lambda x: float(round(float(x), 6))  # noqa: E731
         p = spec.pair
         g = p.gears
         return {"teeth": list(p.teeth), "module_mm": p.module, "pressure_angle_deg": r6(math.degrees(p.pressure_angle)),

@@ -19,6 +19,7 @@ from ...checks.footer import check_footer
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.findings import Finding, Result
+from ...core.quantise import r6
 from ...core.protocol import Motion, Trace
 from ...errors import DesignError
 from ...export.report import figure_png
@@ -129,7 +130,6 @@ class CrossedHelical:
         return []
 
     def _numbers(self, spec: CrossedSpec) -> dict:
-        r6 = lambda x: float(round(float(x), 6))  # noqa: E731
         p = spec.pair
         return {"teeth": list(p.teeth), "normal_module_mm": p.normal_module,
                 "normal_pressure_angle_deg": r6(math.degrees(p.normal_pressure_angle)),

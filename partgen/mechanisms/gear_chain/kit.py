@@ -13,21 +13,29 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...core.parts import Bore, Contact, Stock
+from ...core.quantise import r6
 from ...core.protocol import ParamsKit
 from ...core.transforms import pose_z, poses_z
 from ...design.kinematics import clockings, gear_tracks, joint_positions_over, link_angles_over
 from ...design.mechanism import PEN_BORE_CLEARANCE, ChainDesign
 from .params import KitParams
-from ...errors import DesignError
+from ...config.yamlio import dump_yaml
+from ...errors import ConfigError, DesignError
+from ...geometry.measure import empty_parts, oversize
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part
 from ...geometry.printing import least_support_flip
 
-__all__ = ["Stack", "Kit", "build_kit"]
+if TYPE_CHECKING:  # annotations only: the resolver builds on these parameters
+    from ...config.loader import LoadedDesign
+    from .resolve import ChainSpec
+
+__all__ = ["Stack", "Kit", "build_kit", "build", "refuse", "design_summary", "kit_files", "size_key", "oversize_parts"]
 
 UP, DOWN = (0.0, 0.0, 1.0), (0.0, 0.0, -1.0)
 
@@ -340,3 +348,100 @@ def belt_path_of(stage, profile):
         return belt_path([D, G])
     T = (stage.tensioner, stage.tensioner_radius + profile.back_height, -1)
     return belt_path([D, T, G] if stage.tensioner[1] < 0 else [G, T, D])
+
+
+# ---------------------------------------------------------------- the kit as the pipeline takes it
+
+def size_key(spec: "ChainSpec", name: str) -> str:
+    """The config key a part's size traces back to."""
+    mech = spec.mechanism
+    if name.startswith("B"):
+        j = int(name[1:])
+        return {"curve": "curve.scale_mm_per_unit", "drawing": "curve.scale"}.get(mech.source, f"links[{j - 1}].length_mm")
+    if name in ("G1", "drive"):
+        return "drive.teeth"
+    if name[0] in "DMG" and name[1:].isdigit():
+        j = int(name[1:]) - (1 if name[0] == "G" else 0)
+        return "teeth" if mech.auto_teeth else f"teeth[{j - 1}].{name[0]}"
+    return {"base": "base", "crank": "base.crank_radius_mm", "pen_holder": "pen"}.get(name, name)
+
+
+def oversize_parts(spec: "ChainSpec", kit: Kit) -> list[tuple[str, str, np.ndarray]]:
+    """Parts whose extents (any axis order) exceed the printer envelope: (name, key, extents)."""
+    return [(p.name, size_key(spec, p.name), ext) for p, ext in oversize(kit.parts, kit.params.printer.envelope)]
+
+
+def build(spec: "ChainSpec", progress=None) -> Kit:
+    """``build_kit`` of a resolved design; a design error names its key."""
+    try:
+        kit = build_kit(spec.mechanism, spec.params, progress)
+    except DesignError as e:
+        raise ConfigError(spec.path, e.key_path, e.problem) from None
+    return kit
+
+def refuse(spec: "ChainSpec", kit: Kit) -> None:
+    """``build`` writes no kit with an empty part or a part larger than the printer (``check`` reports them)."""
+    for part in empty_parts(kit.parts):
+        raise ConfigError(spec.path, size_key(spec, part.name), f"part {part.name} comes out empty: a size in the "
+                          "design leaves it no material")
+    big = oversize_parts(spec, kit)
+    if big:
+        name, key, ext = big[0]
+        env = " × ".join(f"{x:g}" for x in spec.params.printer.envelope)
+        raise ConfigError(spec.path, key, f"part {name} measures {' × '.join(f'{x:.1f}' for x in ext[::-1])} mm "
+                          f"and does not fit the printer's {env} mm envelope in any orientation"
+                          + (f" (and {len(big) - 1} more parts)" if len(big) > 1 else ""))
+
+
+def design_summary(spec: "ChainSpec", kit: Kit, kind: str) -> dict:
+    """The manifest's "design" entry: chain, stages, drive, stack, findings."""
+    from ...design.trace import crank_turns
+
+    mech, params = spec.mechanism, spec.params
+    return {
+        "name": params.name,
+        "kind": kind,
+        "config": spec.path.name,
+        "printer": params.printer.name,
+        "material": params.material,
+        "density_g_cm3": r6(params.density * 1000),
+        "crank_angle_rad": 0.0,
+        "crank_turns_per_drawing": str(crank_turns(mech)),
+        "module_mm": params.system.module,
+        "pressure_angle_deg": r6(math.degrees(params.system.pressure_angle)),
+        "teeth_mode": "auto" if mech.auto_teeth else "explicit",
+        "ground_offset_mm": [r6(mech.chain.offset.real), r6(mech.chain.offset.imag)],
+        "links": [{"j": j, "name": l.name, "speed": l.speed, "length_mm": r6(l.length),
+                   "initial_angle_deg": r6(math.degrees(l.phase))} for j, l in enumerate(mech.chain.links, 1)],
+        "stages": [{"j": s.j, "ratio": str(s.ratio), "teeth": {"D": s.D.teeth, "M": s.M.teeth, "G": s.G.teeth},
+                    "profile_shift": {"D": r6(s.D.profile_shift), "M": r6(s.M.profile_shift),
+                                      "G": r6(s.G.profile_shift)},
+                    "a_DM_mm": r6(s.a_DM), "a_MG_mm": r6(s.a_MG),
+                    "idler_mm": [r6(s.idler[0]), r6(s.idler[1])]} for s in mech.stages],
+        "drive": {"teeth": mech.drive.teeth, "centre_mm": [r6(c) for c in mech.drive_centre]},
+        "stack_mm": {"axial_gap": kit.stack.gap, "face_width": kit.stack.face, "plate": kit.stack.plate,
+                     "layers": [r6(kit.stack.layer(j)) for j in range(len(mech.stages) + 1)],
+                     "plates": [r6(kit.stack.plate_z(j)) for j in range(1, len(mech.chain.links) + 1)]},
+        "findings": [{"severity": f.severity, "code": f.rule, "key": f.key, "message": f.message}
+                     for f in mech.findings],
+    }
+
+def kit_files(spec: "ChainSpec", kit: Kit, raw: "LoadedDesign") -> dict[str, bytes]:
+    """The design and its printer profile, as a kit folder keeps them: design.yaml names
+    printer.yaml beside it."""
+    data = raw.document()
+    data["printer"] = "printer.yaml"
+    if isinstance(data.get("gears"), dict) and data["gears"].get("module_mm") == "auto":
+        data["gears"]["module_mm"] = spec.params.system.module  # the module auto chose, pinned
+    c = raw.design.curve
+    if c is not None and c.drawn and c.scale == "auto":
+        data["curve"] = {**data["curve"], "scale": spec.mechanism.drawing.scale}  # the scale auto chose, pinned
+    files = {}
+    if c is not None and c.drawn and (c.svg is not None or isinstance(c.points, str)):
+        from ...config.drawing import curve_file
+
+        key, suffix = ("svg", ".svg") if c.svg is not None else ("points", ".csv")
+        src = curve_file(getattr(c, key), raw.path, f"curve.{key}", suffix)
+        data["curve"] = {**data["curve"], key: f"curve{suffix}"}  # the kit keeps its own copy
+        files[f"curve{suffix}"] = src.read_bytes()
+    return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document()), **files}

@@ -8,15 +8,12 @@ from pathlib import Path
 
 import numpy as np
 
+from ...core.quantise import r6
 from ...core.protocol import Trace
 from .kit import Kit
 from .resolve import ChainSpec
 
 __all__ = ["trace", "csv", "trace_text", "pen_error_band"]
-
-
-def _r6(x) -> float:
-    return float(round(float(x), 6))
 
 
 def _drawing_deviation(mech) -> dict:
@@ -31,10 +28,10 @@ def _drawing_deviation(mech) -> dict:
     h, mx, rms = measure(chain, d)
     same = np.abs(trace(chain, d.theta) - d.samples)
     return {"target": "drawing", "drawing": d.source, "drawing_samples": int(len(d.samples)),
-            "parametrisation": d.parametrisation, "max_deviation_mm": _r6(mx), "rms_mm": _r6(rms),
-            "hausdorff_mm": _r6(h), "worst_theta_rad": _r6(d.theta[int(np.argmax(same))]),
-            "tradeoff": [{"links": r.links, "hausdorff_mm": _r6(r.hausdorff_mm), "max_deviation_mm": _r6(r.max_mm),
-                          "rms_mm": _r6(r.rms_mm), "shortest_link_mm": _r6(r.shortest_mm)} for r in d.rows]}
+            "parametrisation": d.parametrisation, "max_deviation_mm": r6(mx), "rms_mm": r6(rms),
+            "hausdorff_mm": r6(h), "worst_theta_rad": r6(d.theta[int(np.argmax(same))]),
+            "tradeoff": [{"links": r.links, "hausdorff_mm": r6(r.hausdorff_mm), "max_deviation_mm": r6(r.max_mm),
+                          "rms_mm": r6(r.rms_mm), "shortest_link_mm": r6(r.shortest_mm)} for r in d.rows]}
 
 
 def pen_error_band(spec: ChainSpec, theta: np.ndarray):

@@ -11,6 +11,7 @@ import numpy as np
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
 from ...core.parts import Bore, Part
+from ...core.quantise import r6
 from ...core.protocol import SpecKit
 from ...core.transforms import pose_z
 from ...errors import DesignError
@@ -72,7 +73,6 @@ def refuse(spec: PairSpec, kit: PairKit) -> None:
 
 
 def design_summary(kind: str, spec: PairSpec, kit: PairKit) -> dict:
-    r6 = lambda x: float(round(float(x), 6))  # noqa: E731
     g1, g2 = spec.gear1, spec.gear2
     return {"name": spec.name, "kind": kind, "module_mm": g1.system.module,
             "pressure_angle_deg": r6(math.degrees(g1.system.pressure_angle)), "teeth": [g1.teeth, g2.teeth],

@@ -9,6 +9,7 @@ import math
 
 from ....config.loader import LoadedDesign
 from ....config.yamlio import dump_yaml
+from ....core.quantise import r6
 from ....core.parts import Contact, Part
 from ....design.gearing import GearSpec
 from ....errors import DesignError
@@ -118,10 +119,6 @@ def hub_contacts(h: Hub, part: str, shaft: str, nut: str, screw: str, seat: str 
         return [Contact(nut, part, "thrust"), Contact(screw, part, "thrust"), Contact(screw, nut, "thrust"),
                 Contact(screw, shaft, "thrust")]
     return []
-
-
-def r6(x) -> float:
-    return float(round(float(x), 6))
 
 
 def hub_summary(h, running: float) -> dict:
