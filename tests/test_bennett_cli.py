@@ -1,7 +1,8 @@
 """`partgen build / check / report` on a Bennett butterfly: the kit folder (watertight STLs, manifest
 with the bill of masses, what to buy and where it goes, the layout pinned in design.yaml), the
 centre of mass recomputed from the kit folder alone, exit codes for a held and a failed balance, and
-bad input naming its key."""
+bad input naming its key. (Every command on the design and a kit folder, a tampered kit folder:
+tests/test_contract.py.)"""
 
 import json
 import math
@@ -123,18 +124,6 @@ def test_check_a_kit_folder_holds(kit_dir, capsys):
     assert main(["check", str(kit_dir), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["ok"] and out["figures"]["balance_mm"]["fdm"] < 1e-3
-
-
-def test_a_tampered_kit_folder_fails(kit_dir, tmp_path, capsys):
-    import shutil
-    copy = tmp_path / "kit"
-    shutil.copytree(kit_dir, copy)
-    mesh = trimesh.load(copy / "link03.stl")
-    mesh.apply_scale(1.01)
-    mesh.export(copy / "link03.stl")
-    assert main(["check", str(copy), "--json"]) == 1
-    out = json.loads(capsys.readouterr().out)
-    assert [f["parts"] for f in out["findings"] if f["check"] == "kit"] == [["link03"]]
 
 
 def test_a_heavier_link_fails_the_check(capsys):
