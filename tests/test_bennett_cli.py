@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 import trimesh
 import yaml
+from helpers import modified
 
 from partgen.cli.main import main
 from partgen.design import bennett_butterfly as bbf
@@ -143,23 +144,19 @@ def test_report_page(tmp_path, built_shipped, prime_kit_cache):
     assert page.count("data:image/png") >= 4
 
 
-@pytest.mark.parametrize("edit,key", [
-    (lambda d: d["linkage"].__setitem__("beta_deg", 50.0), "linkage.beta_deg"),
-    (lambda d: d["linkage"].__setitem__("b_mm", 200.0), "linkage.b_mm"),
-    (lambda d: d["parts"].__setitem__("bar_diameter_mm", 12.0), "parts.bar_diameter_mm"),
-    (lambda d: d["pin"].__setitem__("diameter_mm", 4.0), "pin.diameter_mm"),
-    (lambda d: d["linkage"].__setitem__("workspace_deg", [90.0, 60.0]), "linkage"),
-    (lambda d: d["counterweights"].__setitem__("distance_mm", [-60.0, 60.0, 60.0]), "counterweights"),
-    (lambda d: d["pin"].__setitem__("stock_lengths_mm", [18.0, 20.0, 22.0]), "pin.stock_lengths_mm"),
-    (lambda d: d["base"].__setitem__("foot_diameter_mm", 12.0), "base.foot_diameter_mm"),
-    (lambda d: d["counterweights"]["slugs"].__setitem__("lengths_mm", []), "counterweights.slugs.lengths_mm"),
+@pytest.mark.parametrize("change,key", [
+    ({"linkage.beta_deg": 50.0}, "linkage.beta_deg"),
+    ({"linkage.b_mm": 200.0}, "linkage.b_mm"),
+    ({"parts.bar_diameter_mm": 12.0}, "parts.bar_diameter_mm"),
+    ({"pin.diameter_mm": 4.0}, "pin.diameter_mm"),
+    ({"linkage.workspace_deg": [90.0, 60.0]}, "linkage"),
+    ({"counterweights.distance_mm": [-60.0, 60.0, 60.0]}, "counterweights"),
+    ({"pin.stock_lengths_mm": [18.0, 20.0, 22.0]}, "pin.stock_lengths_mm"),
+    ({"base.foot_diameter_mm": 12.0}, "base.foot_diameter_mm"),
+    ({"counterweights.slugs.lengths_mm": []}, "counterweights.slugs.lengths_mm"),
 ])
-def test_bad_input_exits_2_with_the_key(tmp_path, capsys, edit, key):
-    d = yaml.safe_load(FIXED.read_text())
-    edit(d)
-    d["printer"] = "fortus450mc"
-    cfg = tmp_path / "bad.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+def test_bad_input_exits_2_with_the_key(tmp_path, capsys, change, key):
+    cfg = modified(FIXED, tmp_path, {**change, "printer": "fortus450mc"}, name="bad.yaml")
     out = tmp_path / "out"
     assert main(["build", str(cfg), "-o", str(out), "-q"]) == 2
     err = capsys.readouterr().err

@@ -2,7 +2,7 @@
 (the bad-input run found α = 0.011° writing link04 as two touching bodies)."""
 
 import pytest
-import yaml
+from helpers import modified
 
 from partgen.mechanisms.bennett_butterfly.resolve import MIN_TWIST_DEG, resolve_bennett
 from partgen.mechanisms import load_design
@@ -10,11 +10,7 @@ from partgen.errors import ConfigError
 
 
 def _design(tmp_path, **linkage):
-    d = yaml.safe_load(open("configs/bennett_butterfly.yaml"))
-    d["linkage"].update(linkage)
-    p = tmp_path / "b.yaml"
-    p.write_text(yaml.safe_dump(d, sort_keys=False))
-    return load_design(p)
+    return load_design(modified("bennett_butterfly", tmp_path, {f"linkage.{k}": v for k, v in linkage.items()}))
 
 
 @pytest.mark.parametrize("linkage, key", [

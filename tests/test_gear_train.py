@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
-import yaml
+from helpers import modified
 from shapely.geometry import Polygon
 
 from partgen import pipeline
@@ -112,10 +112,7 @@ def test_check_on_a_desktop_printer():
     ({"shafts": {"bores": ["round", "round"]}}, "shafts.bores"),
 ])
 def test_bad_tables_are_exit_2_naming_the_key(tmp_path, capsys, change, key):
-    d = yaml.safe_load(CFG.read_text())
-    d.update(change)
-    cfg = tmp_path / "bad.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified(CFG, tmp_path, change, name="bad.yaml")  # whole sections replaced
     assert main(["build", str(cfg), "-o", str(tmp_path / "out"), "--json"]) == 2
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["key"] == key, err

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from helpers import modified
 
 from partgen import pipeline
 from partgen.mechanisms.gear_chain.resolve import load as chain_load
@@ -30,13 +31,9 @@ RULES = {"tip-root", "contact-ratio", "involute", "backlash", "tip-width", "wall
 
 
 def design(tmp_path, base="butterfly", printer=None, **sections):
-    d = yaml.safe_load((CONFIGS / f"{base}.yaml").read_text())
-    d["printer"] = str(printer or CONFIGS / "printers" / "fortus450mc.yaml")
-    for section, values in sections.items():
-        d.setdefault(section, {}).update(values)
-    path = tmp_path / f"{d['name']}.yaml"
-    path.write_text(yaml.safe_dump(d))
-    return path
+    """configs/<base>.yaml on ``printer`` (default the Fortus) with ``sections``' keys changed."""
+    return modified(base, tmp_path, {"printer": str(printer or CONFIGS / "printers" / "fortus450mc.yaml"),
+                                     **{f"{s}.{k}": v for s, values in sections.items() for k, v in values.items()}})
 
 
 def rule_failures(kit, thetas=8):
