@@ -141,7 +141,7 @@ SHARED = {
     "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[gear_train_worm]": "test_worm.py",
 }
 # The groups that take longest go first, so the two workers end together.
-FIRST = ("test_contract.py", "test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py",
+FIRST = ("test_contract.py", "test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_bench_sweep.py",
          "test_manifest_schema.py")
 
 

@@ -1,8 +1,8 @@
 """`partgen build / check / report` on a Bennett butterfly: the kit folder (watertight STLs, manifest
 with the bill of masses, what to buy and where it goes, the layout pinned in design.yaml), the
 centre of mass recomputed from the kit folder alone, exit codes for a held and a failed balance, and
-bad input naming its key. (Every command on the design and a kit folder, a tampered kit folder:
-tests/test_contract.py.)"""
+bad input naming its key (a twist all but planar refused before any geometry). (Every command on
+the design and a kit folder, a tampered kit folder: tests/test_contract.py.)"""
 
 import json
 import math
@@ -16,6 +16,9 @@ from helpers import modified
 
 from partgen.cli.main import main
 from partgen.design import bennett_butterfly as bbf
+from partgen.errors import ConfigError
+from partgen.mechanisms import load_design
+from partgen.mechanisms.bennett_butterfly.resolve import MIN_TWIST_DEG, resolve_bennett
 from partgen.testing import mesh_problems
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -162,3 +165,26 @@ def test_bad_input_exits_2_with_the_key(tmp_path, capsys, change, key):
     err = capsys.readouterr().err
     assert str(cfg.name) in err and key in err
     assert not out.exists()
+
+
+def _twisted(tmp_path, **linkage):
+    """The shipped design with ``linkage`` changed, as the loader reads it."""
+    return load_design(modified("bennett_butterfly", tmp_path, {f"linkage.{k}": v for k, v in linkage.items()}))
+
+
+@pytest.mark.parametrize("linkage, key", [
+    ({"alpha_deg": 0.011}, "linkage.alpha_deg"),
+    ({"alpha_deg": 179.5}, "linkage.alpha_deg"),
+    ({"alpha_deg": 1.5, "b_mm": 50.0}, "linkage.b_mm"),  # β = asin(50/105 sin 1.5°) = 0.71°
+])
+def test_an_all_but_planar_twist_is_refused_on_its_key(tmp_path, linkage, key):
+    """A Bennett linkage within a degree of planar is refused on the twist's key before any geometry
+    (the bad-input run found α = 0.011° writing link04 as two touching bodies)."""
+    with pytest.raises(ConfigError) as e:
+        resolve_bennett(_twisted(tmp_path, **linkage))
+    assert e.value.key_path == key and "all but planar" in e.value.problem
+
+
+def test_the_smallest_twist_passes_the_rule(tmp_path):
+    params = resolve_bennett(_twisted(tmp_path, alpha_deg=MIN_TWIST_DEG))
+    assert params is not None
