@@ -26,6 +26,7 @@ from helpers import ROOT, modified
 
 from partgen import pipeline
 from partgen.cli.main import main
+from partgen.export.outputs import MARKER
 from partgen.mechanisms import REGISTRY
 
 # the cheapest design of each kind that passes its check (not butterfly_liu2017, which fails by design);
@@ -117,7 +118,7 @@ def test_build_writes_the_whole_kit(kit):
     assert man["design"]["kind"] == kit.kind
     assert [p["file"] for p in out["parts"]] == [p["file"] for p in man["parts"]] and man["parts"]
     files = set(os.listdir(kit.dest))
-    assert {"manifest.json", "design.yaml", "assembly.glb", ".partgen"} <= files
+    assert {"manifest.json", "design.yaml", "assembly.glb", MARKER} <= files
     for p in man["parts"]:
         stl = (kit.dest / p["file"]).read_bytes()
         assert len(stl) == 84 + 50 * int.from_bytes(stl[80:84], "little") > 84, p["file"]  # a whole binary STL
@@ -137,7 +138,7 @@ def test_command(kit, command, on, tmp_path):
     assert code == 0, err[-2000:] + out[-2000:]
     got = json.loads(out)
     assert got["ok"] is True
-    assert (folder / ".partgen").is_file(), f"{command} wrote no {folder}"
+    assert (folder / MARKER).is_file(), f"{command} wrote no {folder}"
     written = [p for p in folder.iterdir() if not p.name.startswith(".")]
     assert written and all(p.stat().st_size > 0 for p in written), written
     names = {p.name for p in written}
@@ -176,7 +177,7 @@ def test_a_tampered_kit_folder_is_caught(kit, tmp_path):
     shutil.copytree(kit.dest, copy)
     stl = copy / json.loads((copy / "manifest.json").read_text())["parts"][-1]["file"]
     data = bytearray(stl.read_bytes())
-    data[len(data) // 2] ^= 0x01  # one bit of one vertex, mid-file
+    data[len(data) // 2] ^= 0x01  # one bit, mid-file
     stl.write_bytes(bytes(data))
     with kit.shared("kit"):  # the same design.yaml: the kit the kit folder's commands share
         code, out, err = run("check", copy, "--samples", "4", "--no-plates", "--json")
