@@ -21,7 +21,7 @@ file, its volume equal to the manifest's), refused (bad input or a design no cho
 read-back). A checked chain kit's failed findings are counted by rule, and split into those build
 warned about (a design finding naming that rule) and those it did not ("unwarned": the bug).
 
-The script prints counts and never fails on them; tests/test_sweep.py holds the same runner to
+The script prints counts and never fails on them; tests/test_bench_sweep.py holds the same runner to
 zero bad meshes, crashes and unwarned check failures on a small seeded sample.
 """
 

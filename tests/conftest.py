@@ -56,34 +56,28 @@ def kit_copy(kit_of, tmp_path):
 @pytest.fixture(scope="session")
 def checked_default_kit(tmp_path_factory, kit_of):
     """`partgen check KITDIR --samples 12 --json` on a copy of the session's default kit folder (not
-    primed: check rebuilds the kit from the folder's own design.yaml and compares the STLs), and the
-    same on a copy of that with B4.stl tampered (``--no-plates``); run once per session (per worker):
-    tests/test_check.py and tests/test_plates.py share it (one worker, ``SHARED``). Returns
+    primed: check rebuilds the kit from the folder's own design.yaml and compares the STLs), run once
+    per session (per worker) for tests/test_plates.py (``SHARED`` with tests/test_check.py). Returns
     {"folder": the checked kit folder with its plates/ (read it, never write into it),
-    "code"/"out": the exit code and JSON of its check, "tampered_code"/"tampered_out": the tampered
-    copy's}."""
+    "code"/"out": the exit code and JSON of its check}. (A tampered kit folder of every kind:
+    tests/test_contract.py.)"""
     import contextlib
     import io
     import json
 
     from partgen.cli.main import main
 
-    def check(folder: Path, *more: str) -> tuple[int, dict]:
+    def check(folder: Path) -> tuple[int, dict]:
         out = io.StringIO()
         with contextlib.redirect_stdout(out):
-            code = main(["check", str(folder), "--samples", "12", "--json", *more])
+            code = main(["check", str(folder), "--samples", "12", "--json"])
         return code, json.loads(out.getvalue())
 
     base = tmp_path_factory.mktemp("checked")
     folder = base / "butterfly_kit"
     shutil.copytree(kit_of("butterfly").dest, folder)
     code, out = check(folder)
-    tampered = base / "tampered_kit"
-    shutil.copytree(folder, tampered)
-    stl = tampered / "B4.stl"
-    stl.write_bytes(stl.read_bytes()[:-50] + bytes(50))
-    tampered_code, tampered_out = check(tampered, "--no-plates")
-    return {"folder": folder, "code": code, "out": out, "tampered_code": tampered_code, "tampered_out": tampered_out}
+    return {"folder": folder, "code": code, "out": out}
 
 
 @pytest.fixture
@@ -129,7 +123,7 @@ SHARED = {
     # the shipped Bennett kit (its layout search: the suite's costliest build), built once for all three
     "test_manifest_schema.py::test_manifest_holds_the_schema[bennett_butterfly]": "test_bennett_cli.py",
     "test_bennett_kit.py": "test_bennett_cli.py",
-    "test_plates.py": "test_check.py",  # checked_default_kit: `check KITDIR` of the default kit
+    "test_plates.py": "test_check.py",  # the default kit (kit_of) and `check KITDIR` of it (checked_default_kit)
     "test_manifest_schema.py::test_manifest_holds_the_schema[lissajous]": "test_multi_turn_drawings.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_crossed_helical]": "test_crossed_helical.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_worm]": "test_worm.py",
@@ -147,7 +141,8 @@ SHARED = {
     "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[gear_train_worm]": "test_worm.py",
 }
 # The groups that take longest go first, so the two workers end together.
-FIRST = ("test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_sweep.py", "test_manifest_schema.py")
+FIRST = ("test_contract.py", "test_bennett_cli.py", "test_wrist.py", "test_check.py", "test_bench_sweep.py",
+         "test_manifest_schema.py")
 
 
 def _group(nodeid: str) -> str:

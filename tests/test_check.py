@@ -171,17 +171,6 @@ def test_check_cli_json_and_exit_codes(tmp_path, capsys, kit_of, prime_kit_cache
     assert main(["check", str(ROOT / "configs" / "butterfly.yaml"), "--samples", "2"]) == 2
 
 
-def test_check_a_built_kit_folder_and_notice_tampering(checked_default_kit):
-    """`check KITDIR` on a copy of the session's `partgen build` of the default design (not primed:
-    check rebuilds the kit from the folder's own design.yaml and compares its STLs), then on a copy
-    of it with B4.stl tampered: the session's runs of them (tests/test_plates.py reads the plates)."""
-    c = checked_default_kit
-    assert c["code"] == 0 and c["out"]["ok"] is True
-    assert (c["folder"] / "plates" / "plate1.3mf").is_file()
-    assert c["tampered_code"] == 1
-    assert any(f["check"] == "kit" and "B4" in f["parts"] for f in c["tampered_out"]["findings"])
-
-
 def test_sweep_samples_the_whole_cycle():
     t = sample_angles(360)
     assert t[0] == 0 and t[-1] == pytest.approx(2 * np.pi * 359 / 360) and len(np.unique(t)) == 360

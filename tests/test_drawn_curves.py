@@ -10,13 +10,13 @@ import math
 import numpy as np
 import pytest
 import yaml
+from helpers import modified
 
 from partgen import pipeline
 from partgen.cli.main import main
 from partgen.config.drawing import read_svg_path
 from partgen.errors import ConfigError
 
-from test_bad_input import CONFIGS
 
 SCALE_MM = 100.0
 
@@ -33,12 +33,7 @@ def write_csv(path, z, header="x_mm,y_mm"):
 
 
 def design(tmp_path, curve: dict, name="drawn") -> "Path":
-    d = yaml.safe_load((CONFIGS / "butterfly.yaml").read_text())
-    d["name"] = name
-    d["curve"] = curve
-    p = tmp_path / f"{name}.yaml"
-    p.write_text(yaml.safe_dump(d, sort_keys=False))
-    return p
+    return modified("butterfly", tmp_path, {"name": name, "curve": curve}, name=f"{name}.yaml")
 
 
 def run_bad(tmp_path, capsys, cfg, *fragments):

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
-import yaml
+from helpers import modified
 from shapely.geometry import Polygon
 
 from partgen import pipeline
@@ -85,15 +85,13 @@ def test_a_shaft_moved_in_fails(reducer):
     assert not result.ok and "mesh" in fails
 
 
-def test_every_command_on_the_kit_folder(kit_copy, capsys):
-    kit_dir = kit_copy("gear_train_reducer")
-    assert main(["check", str(kit_dir), "--samples", "8", "--no-plates", "--json"]) == 0  # rebuilt byte for byte
-    assert json.loads(capsys.readouterr().out)["ok"] is True
-    assert main(["trace", str(kit_dir), "--samples", "24", "--json"]) == 0
+def test_trace_measures_the_ratio(reducer, prime_kit_cache, capsys):
+    """(the session's kit; every command on a gear train's design and kit folder: tests/test_contract.py)"""
+    prime_kit_cache(reducer)
+    assert main(["trace", str(CFG), "--samples", "24", "--no-plots", "--json"]) == 0
     s = json.loads(capsys.readouterr().out)
     assert s["kind"] == "gear_train" and s["ratio_measured"] == pytest.approx(10.0, rel=2e-4)
     assert 0 < s["transmission_error_arcmin"]["peak_to_peak"] < 2.0
-    assert (kit_dir / "trace" / "transmission.png").is_file()
 
 
 def test_check_on_a_desktop_printer():
@@ -114,10 +112,7 @@ def test_check_on_a_desktop_printer():
     ({"shafts": {"bores": ["round", "round"]}}, "shafts.bores"),
 ])
 def test_bad_tables_are_exit_2_naming_the_key(tmp_path, capsys, change, key):
-    d = yaml.safe_load(CFG.read_text())
-    d.update(change)
-    cfg = tmp_path / "bad.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified(CFG, tmp_path, change, name="bad.yaml")  # whole sections replaced
     assert main(["build", str(cfg), "-o", str(tmp_path / "out"), "--json"]) == 2
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["key"] == key, err

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import trimesh
 import yaml
+from helpers import modified
 from shapely.geometry import LineString, Point, Polygon
 
 from partgen import pipeline
@@ -171,9 +172,6 @@ def test_bad_hub_sizes_are_exit_2_naming_the_key(tmp_path, capsys, change, key):
 def test_planetary_sets_refuse_a_round_bore(tmp_path, capsys):
     """A planetary set's input and output shafts turn: ``round`` (a fixed pin) is refused (the other
     kinds: tests/test_gear_train_hubs_planetary.py)."""
-    from pathlib import Path
-
-    d = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" / "gear_train_planetary.yaml").read_text())
-    d.setdefault("shafts", {})["bores"] = ["keyway", "round"]
-    assert main(["build", _write(tmp_path, d), "-o", str(tmp_path / "out"), "--json"]) == 2
+    cfg = modified("gear_train_planetary", tmp_path, {"shafts.bores": ["keyway", "round"]})
+    assert main(["build", str(cfg), "-o", str(tmp_path / "out"), "--json"]) == 2
     assert json.loads(capsys.readouterr().out)["error"]["key"] == "shafts.bores"

@@ -11,6 +11,7 @@ import pytest
 import shapely
 import trimesh
 import yaml
+from helpers import modified
 from shapely.geometry import LineString, Point, Polygon
 
 from partgen import pipeline
@@ -52,14 +53,11 @@ def _built(tmp_path_factory, design):
 @pytest.fixture(scope="module")
 def fortus(tmp_path_factory):
     """The shipped planetary set on the Fortus, its sun on a set screw, its carrier keyed."""
-    from pathlib import Path
-
-    d = yaml.safe_load((Path(__file__).resolve().parents[1] / "configs" / "gear_train_planetary.yaml").read_text())
-    d["shafts"]["bores"] = ["set_screw", "keyway"]
-    d["frame"]["plate_thickness_mm"] = 8.0
-    d["checks"]["samples"] = 24
-    d["name"] = "pl_fortus"
-    return _built(tmp_path_factory, d)
+    cfg = modified("gear_train_planetary", tmp_path_factory.mktemp("pl_fortus"),
+                   {"shafts.bores": ["set_screw", "keyway"], "frame.plate_thickness_mm": 8.0, "checks.samples": 24,
+                    "name": "pl_fortus"})
+    loaded = pipeline.load(cfg)
+    return loaded.spec, MECHANISM.build(loaded.spec)
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import yaml
+from helpers import modified
 
 from partgen.cli.main import main
 from partgen.design.planetary import assembly_whole, planet_angles, planetary_teeth
@@ -86,10 +86,8 @@ def test_a_planet_off_its_phase_overlaps(planetary):
     ({"ratio": 1.2}, "planetary.ratio", "no sun"),
 ])
 def test_bad_sets_are_exit_2(tmp_path, capsys, change, key, words):
-    d = yaml.safe_load(CFG.read_text())
-    d["planetary"] = {k: v for k, v in d["planetary"].items() if k != "ratio"} | change
-    cfg = tmp_path / "bad.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified(CFG, tmp_path, {f"planetary.{k}": v for k, v in change.items()}, drop=["planetary.ratio"],
+                   name="bad.yaml")
     assert main(["build", str(cfg), "-o", str(tmp_path / "out"), "--json"]) == 2
     err = json.loads(capsys.readouterr().out)["error"]
     assert err["key"] == key and words in err["message"], err
@@ -97,10 +95,8 @@ def test_bad_sets_are_exit_2(tmp_path, capsys, change, key, words):
 
 def test_unequal_spacing_builds_and_meshes(tmp_path):
     from partgen import pipeline
-    d = yaml.safe_load(CFG.read_text())
-    d["planetary"] = {"teeth": [18, 27, 72], "planets": 4, "spacing": "unequal"}
-    cfg = tmp_path / "unequal.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified(CFG, tmp_path, {"planetary": {"teeth": [18, 27, 72], "planets": 4, "spacing": "unequal"}},
+                   name="unequal.yaml")
     spec = pipeline.load(cfg).spec
     assert not assembly_whole(18, 72, 4)
     turned = turn_planetary(build_planetary(spec), np.array([0.0, 0.7]), tol=1e-4)

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from helpers import modified
 
 from partgen.cli.main import main
 from partgen.core.protocol import OPTIONAL_HOOKS, Mechanism, OptionalHooks
@@ -113,10 +114,7 @@ def test_callers_use_only_declared_members():
 
 
 def test_a_misspelt_kind_is_one_error_on_kind(tmp_path, capsys):
-    d = yaml.safe_load((ROOT / "configs" / "bennett_butterfly.yaml").read_text())
-    d["kind"] = "bennet_butterfly"
-    cfg = tmp_path / "typo.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified("bennett_butterfly", tmp_path, {"kind": "bennet_butterfly"}, name="typo.yaml")
     with pytest.raises(ConfigError) as e:
         load_design(cfg)
     assert e.value.key_path == "kind"

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from helpers import modified
 
 from partgen.cli.main import main
 from partgen.export.outputs import MARKER
@@ -56,14 +57,6 @@ def kit(tmp_path_factory, kit_of) -> Path:
     return dest
 
 
-def design_copy(tmp_path: Path, **changes) -> Path:
-    d = yaml.safe_load(DEFAULT.read_text())
-    d.update(changes)
-    path = tmp_path / "design.yaml"
-    path.write_text(yaml.safe_dump(d, sort_keys=False))
-    return path
-
-
 def test_build_refuses_a_folder_with_the_users_files(tmp_path, capsys):
     mine = user_folder(tmp_path)
     before = snapshot(tmp_path)
@@ -74,7 +67,7 @@ def test_build_refuses_a_folder_with_the_users_files(tmp_path, capsys):
 
 
 def test_build_refuses_the_folder_holding_the_design(tmp_path, capsys):
-    cfg = design_copy(tmp_path)
+    cfg = modified(DEFAULT, tmp_path, name="design.yaml")
     before = snapshot(tmp_path)
     assert main(["build", str(cfg), "-o", str(tmp_path), "-q"]) == 2
     assert "design.yaml" in capsys.readouterr().err
@@ -99,10 +92,7 @@ def test_a_name_is_a_file_name_not_a_path(kit, tmp_path, capsys, monkeypatch, na
     monkeypatch.chdir(tmp_path)
     other = tmp_path / "out" / "butterfly"
     shutil.copytree(kit, other)
-    d = yaml.safe_load(DEFAULT.read_text())
-    d["name"] = name
-    cfg = tmp_path / "evil.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified(DEFAULT, tmp_path, {"name": name}, name="evil.yaml")
     before = snapshot(tmp_path)
     assert main(["build", str(cfg), "-q"]) == 2
     err = capsys.readouterr().err
@@ -164,10 +154,8 @@ def test_unchanged_rebuild_keeps_derived_outputs_a_changed_one_removes_them(tmp_
     assert main(["build", str(pair), "-o", str(dest), "-q"]) == 0
     assert snapshot(dest) == before, "an unchanged rebuild touched the kit"
     assert "removed" not in capsys.readouterr().err
-    d = yaml.safe_load(pair.read_text())
-    d["base"]["thickness_mm"] += 0.5
-    changed = tmp_path / "design.yaml"
-    changed.write_text(yaml.safe_dump(d, sort_keys=False))
+    thickness = yaml.safe_load(pair.read_text())["base"]["thickness_mm"]
+    changed = modified(pair, tmp_path, {"base.thickness_mm": thickness + 0.5}, name="design.yaml")
     assert main(["build", str(changed), "-o", str(dest), "-q"]) == 0
     err = capsys.readouterr().err
     assert "partgen: note: removed plates/, trace/" in err, err
@@ -238,7 +226,7 @@ def test_a_closed_stdout_ends_quietly(tmp_path):
 
 
 def test_json_bad_input_is_one_object(tmp_path, capsys):
-    cfg = design_copy(tmp_path, gears={"module_mm": float("nan"), "face_width_mm": 6.0})
+    cfg = modified(DEFAULT, tmp_path, {"gears": {"module_mm": float("nan"), "face_width_mm": 6.0}}, name="design.yaml")
     assert main(["check", str(cfg), "--json"]) == 2
     out = json.loads(capsys.readouterr().out)
     assert out["ok"] is False and out["error"]["key"] == "gears.module_mm" and out["error"]["file"] == str(cfg)

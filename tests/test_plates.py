@@ -291,14 +291,15 @@ def test_3mf_is_much_smaller_than_a_mesh_per_copy(items, layouts):
 def checked_kits(tmp_path_factory, checked_default_kit):
     """design -> (manifest, plates folder, loaded): each design built into a kit, then `check KITDIR`
     writes its plates (default chain on the Fortus: 1 plate; on a 220 mm bed: several, B1 on the
-    diagonal). The default's is the session's `check KITDIR` of a copy of its kit (tests/test_check.py
-    shares it)."""
+    diagonal). The default's is the session's `check KITDIR` of a copy of its kit (conftest's
+    ``checked_default_kit``)."""
     import json
 
     from partgen import pipeline
 
     out = {}
     kit = checked_default_kit["folder"]
+    assert checked_default_kit["code"] == 0 and checked_default_kit["out"]["ok"] is True
     assert not [f for f in checked_default_kit["out"]["findings"] if "build plates" in f["message"]]
     out["butterfly"] = (json.loads((kit / "manifest.json").read_text()), kit / "plates", pipeline.load(kit))
     kit = tmp_path_factory.mktemp("desktop220") / "kit"

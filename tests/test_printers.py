@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from helpers import modified
 
 from partgen.cli.main import main
 from partgen.config.loader import PRINTERS_DIR, printer_limits, read_yaml, shipped_printers, validate
@@ -109,10 +110,7 @@ def test_printer_option_reads_a_file_anywhere_but_a_design_does_not(tmp_path):
     mine = _profile(tmp_path, name="my printer")
     loaded = load(DESKTOP, over=overrides((), str(mine)))
     assert loaded.spec.params.printer.name == "my printer"
-    design = yaml.safe_load(DESKTOP.read_text())
-    design["printer"] = str(mine)
-    (tmp_path / "d").mkdir()
-    (tmp_path / "d" / "x.yaml").write_text(yaml.safe_dump(design))
+    modified(DESKTOP, tmp_path / "d", {"printer": str(mine)}, name="x.yaml")
     with pytest.raises(ConfigError, match="outside the design's folder"):
         load(tmp_path / "d" / "x.yaml")
 

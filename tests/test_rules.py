@@ -1,6 +1,7 @@
 """`auto` means it passes: what `teeth: auto` chooses meets the rules `partgen check` holds the kit
 to (design.rules, one place both use); a design given by hand that breaks one gets a build warning
-with the same rule code the check's finding carries; holes are held to the rule that fits them."""
+with the same rule code the check's finding carries; holes are held to the rule that fits them; a
+running fit under the facets is warned; a designed zero backlash is met."""
 
 import math
 import re
@@ -10,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from helpers import modified
 
 from partgen import pipeline
 from partgen.mechanisms.gear_chain.resolve import load as chain_load
@@ -30,13 +32,9 @@ RULES = {"tip-root", "contact-ratio", "involute", "backlash", "tip-width", "wall
 
 
 def design(tmp_path, base="butterfly", printer=None, **sections):
-    d = yaml.safe_load((CONFIGS / f"{base}.yaml").read_text())
-    d["printer"] = str(printer or CONFIGS / "printers" / "fortus450mc.yaml")
-    for section, values in sections.items():
-        d.setdefault(section, {}).update(values)
-    path = tmp_path / f"{d['name']}.yaml"
-    path.write_text(yaml.safe_dump(d))
-    return path
+    """configs/<base>.yaml on ``printer`` (default the Fortus) with ``sections``' keys changed."""
+    return modified(base, tmp_path, {"printer": str(printer or CONFIGS / "printers" / "fortus450mc.yaml"),
+                                     **{f"{s}.{k}": v for s, values in sections.items() for k, v in values.items()}})
 
 
 def rule_failures(kit, thetas=8):
@@ -164,3 +162,35 @@ def test_an_axial_gap_at_the_least_clearance_passes_and_under_it_is_warned(tmp_p
     under = pipeline.load(design(tmp_path, joints={"axial_gap_mm": 0.25}, checks={"min_clearance_mm": 0.3}))
     (warned,) = [f for f in under.spec.mechanism.findings if f.rule == "clearance"]
     assert warned.severity == "warn" and warned.key == "joints.axial_gap_mm" and "≥ 0.3" in warned.message
+
+
+@pytest.mark.parametrize("diametral, warned", [(0.0, True), (0.01, True), (0.02, False), (0.2, False)])
+def test_running_clearance_under_the_facets_is_warned_with_the_fit_rule(tmp_path, diametral, warned):
+    """A running clearance under the round features' facet depth is warned by build with the rule the
+    check fails it by ("fit"): the sweep found the drive axle jammed in the base at 0 and 0.005 mm
+    radial with no warning."""
+    loaded = chain_load(modified("butterfly", tmp_path, {"joints.running_clearance_diametral_mm": diametral}))
+    fits = [f for f in loaded.mechanism.findings if f.rule == "fit"]
+    assert bool(fits) == warned
+    if warned:
+        assert fits[0].severity == "warn" and fits[0].key == "joints" and "0.02 mm diametral" in fits[0].message
+
+
+def test_zero_backlash_at_the_assembled_centre_distance_is_no_breach():
+    """A designed backlash of zero is met, not broken: the rule tolerates the arithmetic's ±1e-12 mm
+    at the centre distance as assembled, and still catches a centre distance a hundredth short."""
+    from partgen.design import involute
+    from partgen.design.gearing import centre_distance, make_gear
+    from partgen.design.rules import mesh_breaches
+
+    s = ToothSystem(module=1.7, pressure_angle=math.radians(19.2), backlash_per_gear=0.0, profile_shift=None)
+    g1, g2 = make_gear(28, s), make_gear(29, s)
+    a = centre_distance(g1, g2)
+    rules = GearRules(1.2, 0.381)
+    for da in (0.0, 1e-12, -1e-12, 2e-11):  # poses composed in float64 place the axes this close
+        j = involute.circumferential_backlash(28, 29, 1.7, math.radians(19.2), g1.profile_shift, g2.profile_shift,
+                                              0.0, 0.0, a + da)
+        assert abs(j) < 1e-9
+        assert not [b for b in mesh_breaches(g1, g2, a + da, rules) if b.rule == "backlash"]
+    short = [b for b in mesh_breaches(g1, g2, a - 0.01, rules) if b.rule == "backlash"]
+    assert short and short[0].value < -1e-3

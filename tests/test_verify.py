@@ -9,7 +9,7 @@ from pathlib import Path
 import manifold3d as m3d
 import numpy as np
 import pytest
-import yaml
+from helpers import modified
 
 from partgen import pipeline
 from partgen.errors import MeshError, PartgenError
@@ -87,28 +87,15 @@ def test_stacked_prisms_share_their_faces_exactly():
     assert r.ok, r.problems()
 
 
-def _variant(tmp_path, base, name, **changes):
-    d = yaml.safe_load((CONFIGS / f"{base}.yaml").read_text())
-    d["printer"] = str(CONFIGS / "printers" / "fortus450mc.yaml")
-    d["name"] = name
-    for key, value in changes.items():
-        *path, last = key.split("__")
-        t = d
-        for k in path:
-            t = t.setdefault(k, {})
-        t[last] = value
-    path = tmp_path / f"{name}.yaml"
-    path.write_text(yaml.safe_dump(d))
-    return path
-
-
 @pytest.mark.parametrize("changes", [
-    {"joints__axial_gap_mm": 0.505},  # the issue's one-line repro (an ulp gap: a two-shell drive axle)
+    {"joints.axial_gap_mm": 0.505},  # the issue's one-line repro (an ulp gap: a two-shell drive axle)
     # the issue's B4/B5/B7: a D-flat's corner on the round post's wall to 1e-10 mm, folded in float32
-    {"curve__scale_mm_per_unit": 38.67, "joints__axle_diameter_mm": 10.99},
+    {"curve.scale_mm_per_unit": 38.67, "joints.axle_diameter_mm": 10.99},
 ])
 def test_issue_designs_build_every_part_as_one_shell(tmp_path, changes):
-    _, _, man, dest = pipeline.build(_variant(tmp_path, "butterfly", "repro", **changes), tmp_path / "kit")
+    cfg = modified("butterfly", tmp_path, {"printer": str(CONFIGS / "printers" / "fortus450mc.yaml"), "name": "repro",
+                                           **changes}, name="repro.yaml")
+    _, _, man, dest = pipeline.build(cfg, tmp_path / "kit")
     for p in man["parts"]:
         r = mesh_report(*read_stl((dest / p["file"]).read_bytes()))
         assert r.ok, (p["name"], r.problems())
@@ -132,11 +119,7 @@ def test_write_kit_raises_mesh_error_naming_part_and_design_and_writes_nothing(t
         return dataclasses.replace(kit, parts=parts)
 
     monkeypatch.setattr(pair, "build_pair", broken)
-    d = yaml.safe_load((CONFIGS / "gear_pair.yaml").read_text())
-    d["name"] = "doomed_pair"
-    (tmp_path / "design").mkdir()
-    cfg = tmp_path / "design" / "doomed.yaml"
-    cfg.write_text(yaml.safe_dump(d))
+    cfg = modified("gear_pair", tmp_path / "design", {"name": "doomed_pair"}, name="doomed.yaml")
     dest = tmp_path / "kit"
     with pytest.raises(MeshError) as e:
         pipeline.build(cfg, dest)

@@ -112,7 +112,7 @@ def test_negative_clearance_sockets_interfere():
 
     The pose looked at, θ = ψ = 0, is a pose of every socket sweep (θ and ψ both start at 0), so
     the socket cut there decides the overlap whatever the grid's density: the coarsest sweep (2 × 6
-    poses, as tests/test_sweep.py builds) shows it as well as a dense one (12 mm³ at 4 × 12, 45 mm³
+    poses, as tests/test_bench_sweep.py builds) shows it as well as a dense one (12 mm³ at 4 × 12, 45 mm³
     at 2 × 6; with +0.3 mm both are 0), and the cross gear, a part of its own, is left out (a
     seventh of the time it took)."""
     spec = resolve_wrist(load_design(ROOT / "configs" / "wrist_sphere.yaml"))
