@@ -20,7 +20,7 @@ What it measures (all in one run, so ratios compare like with like on this machi
 3. sweep time against the number of crank angles (36 ... 720).
 4. sweep and check_kit time against the number of links: synthetic designs, butterfly.yaml with a
    longer polar series (harmonics 2..K), giving chains of 11, 15, 19, 23 links.
-5. the faulted kit (plate B5 moved to B3's z, as in tests/test_check.py): both checks must find B3-B5.
+5. the faulted kit (plate B5 moved to B3's z, as in tests/mechanisms/gear_chain/test_check.py): both checks must find B3-B5.
 
 Timings use time.perf_counter. Nothing here asserts on time. It prints figures and whether the
 target is met.
@@ -81,7 +81,7 @@ def pair_key(a: str, b: str) -> str:
 
 # ----------------------------------------------------------------------------- the faulted kit
 class OneLayer(Kit):
-    """An assembly fault: plate B5 put on plate B3's level, nothing else moved (tests/test_check.py)."""
+    """An assembly fault: plate B5 put on plate B3's level, nothing else moved (tests/mechanisms/gear_chain/test_check.py)."""
 
     def poses(self, theta):
         p = super().poses(theta)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what the browser and glTF tests use, if missing: Debian's headless Chromium (the report's
-# page and viewer, tests/test_report.py, tests/test_viewer.py) and the Khronos glTF validator (the
-# gltf-validator npm package, global, for tests/test_gltf.py; needs node and npm, installed from
+# page and viewer, tests/export/test_report.py, tests/export/test_viewer.py) and the Khronos glTF validator (the
+# gltf-validator npm package, global, for tests/export/test_gltf.py; needs node and npm, installed from
 # Debian when missing). Needs root (CI runs as root); does nothing for what is already there.
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive

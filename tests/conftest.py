@@ -57,10 +57,10 @@ def kit_copy(kit_of, tmp_path):
 def checked_default_kit(tmp_path_factory, kit_of):
     """`partgen check KITDIR --samples 12 --json` on a copy of the session's default kit folder (not
     primed: check rebuilds the kit from the folder's own design.yaml and compares the STLs), run once
-    per session (per worker) for tests/test_plates.py (``SHARED`` with tests/test_check.py). Returns
+    per session (per worker) for tests/export/test_plates.py (``SHARED`` with tests/mechanisms/gear_chain/test_check.py). Returns
     {"folder": the checked kit folder with its plates/ (read it, never write into it),
     "code"/"out": the exit code and JSON of its check}. (A tampered kit folder of every kind:
-    tests/test_contract.py.)"""
+    tests/cli/test_contract.py.)"""
     import contextlib
     import io
     import json

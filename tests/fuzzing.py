@@ -1,6 +1,6 @@
 """Seeded mutations of design files, and a worker that builds them in-process.
 
-Used by tests/test_bad_input.py (bounded) and benchmarks/bad_inputs.py (the whole space). Each
+Used by tests/cli/test_bad_input.py (bounded) and benchmarks/bad_inputs.py (the whole space). Each
 mutation changes one thing in a shipped design: a leaf set to a hostile value (negative, zero,
 NaN, ±inf, 1e308, a tiny number, text, a bool, a list, a mapping, null), a key dropped, a
 misspelt key added. The worker runs ``partgen build`` on each and prints one JSON line per case:

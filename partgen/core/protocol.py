@@ -127,7 +127,7 @@ Step = tuple[str, tuple[str, ...]]  # an assembly step: (what to do, the names o
 
 class Mechanism(Protocol):
     """One kind of mechanism, as a vertical slice (schema, resolver, kit, checks, trace, report): exactly
-    what the pipeline, the studies, the CLI and export call. ``tests/test_mechanisms.py`` holds every
+    what the pipeline, the studies, the CLI and export call. ``tests/mechanisms/test_mechanisms.py`` holds every
     registered mechanism to these members and their signatures (and to ``OptionalHooks`` for the rest)."""
 
     kind: str            # the design file's ``kind:``

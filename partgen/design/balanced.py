@@ -15,7 +15,7 @@ vanish: three linear conditions on the masses and their offsets (``balance_coeff
 paper's Eq 9–11 are these conditions simplified under its assumption that four-bar 1's opposite
 sides are equal (l1a = l3, l2 = l4a: a parallelogram in the planar form, and what every Bennett
 linkage has, a, b, a, b); for any other four-bar they are different conditions and do not
-balance it (``paper_mass_equations``; tests/test_balanced.py measures both cases).
+balance it (``paper_mass_equations``; tests/design/test_balanced.py measures both cases).
 """
 
 from __future__ import annotations

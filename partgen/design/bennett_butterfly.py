@@ -15,7 +15,7 @@ each (∥ B2's and ∥ D2's): planar parallelograms, so C1 and C2 are ordinary r
 
 A single pin at S (all four central links on one axis) cannot work: the relative motion of links 2
 and 9 then has neither a fixed axis nor a fixed point, so no joint at C1 could follow it
-(``tests/test_bennett_butterfly.py`` measures this).
+(``tests/mechanisms/bennett_butterfly/test_bennett_butterfly.py`` measures this).
 
 Inputs: q1, the angle of link 1 (S→B2) about S's axis z, and q4, the angle of S→B3 about z (both
 lie in the xy plane: they are common normals of the S axis). q1 alone turns the whole linkage

@@ -54,7 +54,7 @@ axis moves its apex along p by Δ cos δ_i; gear 2's pin hole's height likewise)
 straight teeth aimed at two apexes, and the exact 3-D check shows it costs backlash *whichever way*
 (a V, not a slope: on bevel_mitre at a tooth centred, −0.16 mm per mm outwards, −0.25 to −0.39
 inwards, more where two teeth share the contact), so no linear term carries it. The n-part above
-is exact (tests/test_tolerance_bevel.py: within 5 % both ways); a pure axial shift of gear 2 opens
+is exact (tests/mechanisms/bevel/test_tolerance_bevel.py: within 5 % both ways); a pure axial shift of gear 2 opens
 0.44 mm per mm against the model's 0.51 (heel) and closes 0.85–0.99 against its 0.75 (toe). The
 seat's axial slides (0.35 mm along p each on the mitre pair) cost 0.06–0.14 mm of the 0.67 mm they
 are credited. Also: a bore's play tilting its gear (the bores are several mm long), the block's hole
