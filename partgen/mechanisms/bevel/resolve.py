@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...config.loader import LoadedDesign, printer_fit, printer_limits
+from ...config.schema import AUTO_PLAY_START_MM
 from ...core.printer import PrinterLimits
 from ...core.transforms import pose, rot_z
 from ...design.bevel import BevelPair, BevelTooth, bevel_pair
@@ -142,11 +143,12 @@ def _clear_of_apex(pair: BevelPair) -> bool:
 def resolve_bevel(loaded: LoadedDesign) -> BevelSpec:
     d, p = loaded.design, loaded.printer
     g = d.gears
+    backlash = AUTO_PLAY_START_MM if g.backlash_per_gear_mm == "auto" else g.backlash_per_gear_mm  # auto: its start
     pair = bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), math.radians(d.shaft_angle_deg),
-                      g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
+                      g.face_width_mm, backlash, g.addendum_coeff, g.dedendum_coeff)
     tol = g.chord_tolerance_mm
     make = lambda sigma: bevel_pair(tuple(g.teeth), g.module_mm, math.radians(g.pressure_angle_deg), sigma,  # noqa: E731
-                                    g.face_width_mm, g.backlash_per_gear_mm, g.addendum_coeff, g.dedendum_coeff)
+                                    g.face_width_mm, backlash, g.addendum_coeff, g.dedendum_coeff)
     if not _clear_of_apex(pair):
         lo, hi = math.radians(30.0), pair.shaft_angle  # the steepest shaft angle that keeps both toes off the apex
         if _clear_of_apex(make(lo)):
