@@ -465,7 +465,7 @@ def contact(tmp: Path) -> dict:
     from partgen import pipeline
     from partgen.checks.contact3d import turned
     from partgen.mechanisms.bevel.kit import BevelKit, build_bevel
-    from partgen.mechanisms.bevel.mechanism import contact_along_face, contact_angles
+    from partgen.mechanisms.bevel.contact import contact_along_face, contact_angles
 
     out = {}
 

@@ -188,7 +188,7 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         for k, own in per_unit["own"].items():
             design_values[k] = {"default": values[k], **own}
     alloc = {"key": ", ".join(keys), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
-             "meshes": sum(m.what == "backlash" for m in model.margins),
+             "meshes": len({m.unit for m in model.margins if m.what.startswith("backlash")}),  # a bevel: heel and toe
              "joints": sum(m.group == "joint" and m.what == "radial gap" for m in model.margins),
              "limited_by": limits or None, "credits": model.credits, "per_unit": per_unit}
     if per_unit["adopted"]:  # the kit is built with the allocation: its figures are the headline

@@ -17,7 +17,7 @@ from partgen.checks.contact3d import turned
 from partgen.checks.contact_pattern import Face, contact_pattern, pattern_finding
 from partgen.geometry.solid import cross_section
 from partgen.mechanisms.bevel.kit import BevelKit
-from partgen.mechanisms.bevel.mechanism import contact_along_face as bevel_contact, contact_angles as bevel_angles
+from partgen.mechanisms.bevel.contact import contact_along_face as bevel_contact, contact_angles as bevel_angles
 
 PHASES = 4
 

@@ -3,16 +3,17 @@ length in mm, every angle in degrees, clearances diametral."""
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import DesignHeader, Gap, Length, Strict
+from ...config.schema import DesignHeader, Gap, Length, Strict, ToleranceTarget
 
 __all__ = ["BevelDesign"]
 
 Teeth = Annotated[int, Field(ge=6, le=400)]
 Fit = Literal["printer"] | Annotated[float, Field(ge=-1, le=5)]
+Running = Literal["printer", "auto"] | Annotated[float, Field(ge=-1, le=5)]
 
 
 class BevelGears(Strict):
@@ -26,9 +27,10 @@ class BevelGears(Strict):
     cones); 20 is standard."""
     face_width_mm: Length
     """Length of the teeth along the pitch cone, from the heel inwards; at most a third of the cone distance."""
-    backlash_per_gear_mm: Gap = 0.1
+    backlash_per_gear_mm: Gap | Literal["auto"] = 0.1
     """Per gear: each tooth is thinned by this arc length at its heel pitch circle; check measures the backlash the
-    pair is left with."""
+    pair is left with; auto: the least that (with the running clearance) meets tolerance.max_jam_probability on the
+    printer."""
     addendum_coeff: Annotated[float, Field(ge=0.5, le=1.5)] = 1.0
     """Tooth height above the pitch cone at the heel, × the module."""
     dedendum_coeff: Annotated[float, Field(ge=0.8, le=2.0)] = 1.25
@@ -41,9 +43,9 @@ class BevelGears(Strict):
 class BevelShafts(Strict):
     diameter_mm: Annotated[list[Length], Field(min_length=2, max_length=2)] = [8.0, 8.0]
     """Diameters of [gear 1's post (upright on the base), gear 2's pin (pressed into its block)]."""
-    running_clearance_diametral_mm: Fit = "printer"
+    running_clearance_diametral_mm: Running = "printer"
     """Diametral running clearance, a gear's bore minus its post or pin; printer: the printer profile's measured
-    running fit."""
+    running fit; auto: the least that (with the backlash) meets tolerance.max_jam_probability on the printer."""
     press_fit_clearance_diametral_mm: Fit = "printer"
     """Diametral clearance of gear 2's pin in its block's hole (hole minus pin; negative: interference); printer:
     the printer profile's measured press fit."""
@@ -73,6 +75,8 @@ class BevelChecks(Strict):
 
 
 class BevelDesign(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"gears.backlash_per_gear_mm": "backlash",
+                                 "shafts.running_clearance_diametral_mm": "running"}  # mechanisms.autoplay
     kind: Literal["bevel"]
     """The mechanism this file designs: `bevel` selects these keys."""
     shaft_angle_deg: Annotated[float, Field(ge=30.0, le=150.0)] = 90.0
@@ -87,6 +91,9 @@ class BevelDesign(DesignHeader):
     """The base, the hubs and the block holding gear 2's pin."""
     checks: BevelChecks = BevelChecks()
     """What partgen check holds the kit to."""
+    tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that auto play (gears.backlash_per_gear_mm, shafts.running_clearance_diametral_mm) is
+    chosen for."""
 
     @model_validator(mode="after")
     def _face(self):

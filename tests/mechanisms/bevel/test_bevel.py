@@ -19,7 +19,8 @@ from partgen.cli.main import main
 from partgen.design.bevel import bevel_pair
 from partgen.geometry.solid import mesh_arrays
 from partgen.mechanisms.bevel.kit import build_bevel
-from partgen.mechanisms.bevel.mechanism import MECHANISM, contact_angles, mesh_overlaps
+from partgen.mechanisms.bevel.contact import contact_angles, mesh_overlaps
+from partgen.mechanisms.bevel.mechanism import MECHANISM
 from partgen.testing import measure_bevel_flanks, mesh_problems
 
 ROOT = Path(__file__).resolve().parents[3]

@@ -13,7 +13,8 @@ import pytest
 
 from partgen.design.tolerance import run_chunk, summarise
 from partgen.mechanisms.bevel.kit import BevelKit
-from partgen.mechanisms.bevel.mechanism import MECHANISM, contact_angles
+from partgen.mechanisms.bevel.contact import contact_angles
+from partgen.mechanisms.bevel.mechanism import MECHANISM
 from partgen.mechanisms.bevel.tolerance import per_backlash, toe_ratio
 
 SHIFT_MM = 0.05
