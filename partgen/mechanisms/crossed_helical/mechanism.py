@@ -10,6 +10,7 @@ three pitches round the pitch point), so every test is a small boolean.
 
 from __future__ import annotations
 
+import html
 import math
 from pathlib import Path
 
@@ -357,7 +358,9 @@ class CrossedHelical:
         check = (f'<p class="{"ok" if result.ok else "fail"}">{f["samples"]} phases over a tooth pitch, exact 3-D: '
                  f'largest overlap {f["max_overlap_mm3"]:.6f} mm³, backlash {f["backlash_mm"]["min"]:.3f}–'
                  f'{f["backlash_mm"]["max"]:.3f} mm; ratio measured {s["ratio_measured"]:.9f} '
-                 f'(relative error {s["ratio_relative_error"]:.1e}).</p>')
+                 f'(relative error {s["ratio_relative_error"]:.1e}).</p>'
+                 + "".join(f'<p>{html.escape(pattern_text(f["contact_along_face"][g]).capitalize())}.</p>'
+                           for g in ("gear2", "gear1")))
         return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")),
                 ("Check", check)]
 
