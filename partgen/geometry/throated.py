@@ -32,6 +32,7 @@ __all__ = ["throated_wheel"]
 OVERLAP_RAD = 0.02  # each tooth's wedge reaches this far into its neighbours' (they overlap, never just touch)
 SLIVER_MM3 = 1e-6  # pieces of a cut smaller than this are the booleans' zero-volume slivers
 ROOT_OVERLAP_MM = 0.02  # the hub's top above the generated root: the spaces' roots stand this much higher
+SEAM_RAD = 0.002  # each cut tooth is trimmed this far short of the middles of its spaces: its copies never touch
 
 
 def throated_wheel(cutter: m3d.Manifold, orientations: Iterable[tuple[np.ndarray, Iterable[float]]], teeth: int,
@@ -48,8 +49,10 @@ def throated_wheel(cutter: m3d.Manifold, orientations: Iterable[tuple[np.ndarray
     The shafts at 90°: the cutter's tip (``cutter_tip`` round its axis, ``centre_distance`` from the
     wheel's) sweeps the root, the torus ρ = a − √(r_c² − z²). The cut tooth is trimmed to its own
     tooth pitch (the planes through the middles of the spaces) and every copy of it stands on a hub
-    whose top is that torus ``ROOT_OVERLAP_MM`` higher, so neighbouring teeth meet only inside the
-    hub: one shell."""
+    whose top is that torus ``ROOT_OVERLAP_MM`` higher; the tooth stops ``SEAM_RAD`` short of those
+    planes, so neighbouring teeth never touch (they meet only through the hub: one shell; where the
+    faceted cutter left the root a hair above the hub's top, the space's middle keeps a groove that
+    shallow)."""
     a, rc = centre_distance, cutter_tip
     if face / 2 >= rc:
         raise ValueError(f"the wheel's face ({face:g} mm) is wider than the worm's tip diameter")
@@ -69,7 +72,7 @@ def throated_wheel(cutter: m3d.Manifold, orientations: Iterable[tuple[np.ndarray
             piece = near.rotate((0.0, 0.0, -math.degrees(turn))) ^ wedge
             if not piece.is_empty():
                 tooth = tooth - piece
-    tooth = tooth ^ sector_prism(tip_radius + 1.0, 0.0, math.pi / teeth, face / 2 + 1.0)
+    tooth = tooth ^ sector_prism(tip_radius + 1.0, 0.0, math.pi / teeth - SEAM_RAD, face / 2 + 1.0)
     kept = [c for c in tooth.decompose() if c.volume() > SLIVER_MM3]
     tooth = m3d.Manifold.batch_boolean(kept, m3d.OpType.Add) if len(kept) > 1 else kept[0]
     z = np.linspace(-face / 2, face / 2, 41)
