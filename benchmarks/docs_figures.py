@@ -461,6 +461,7 @@ def contact(tmp: Path) -> dict:
     worm from `check --json`; the mitre pair with gear 2 moved ±0.2 mm off the plane of the shafts
     (in-process, the test's mis-set), against the closed form of where its pattern ends."""
     import numpy as np
+    import yaml
 
     from partgen import pipeline
     from partgen.checks.contact3d import turned
@@ -485,6 +486,19 @@ def contact(tmp: Path) -> dict:
         else:
             out[key] = pattern(f)
         out[key]["check_s"] = r(c["seconds"], 1)
+    # the shipped worm with a throated wheel (gears.throated), at the shipped chord tolerance
+    d = yaml.safe_load((ROOT / "configs" / "gear_train_worm.yaml").read_text())
+    d["name"], d["gears"]["throated"] = "worm_throated", True
+    cfg = tmp / "worm_throated.yaml"
+    cfg.write_text(yaml.safe_dump(d, sort_keys=False))
+    c = partgen("check", str(cfg), "-o", str(tmp / "throated"))
+    f = c["figures"]
+    out["throated"] = {**pattern(f["contact_along_face"]["gear2"]), "check_s": r(c["seconds"], 1),
+                       "overlap_mm3": f["max_overlap_mm3"], "backlash_min_mm": r(f["backlash_mm"]["min"], 3),
+                       "backlash_max_mm": r(f["backlash_mm"]["max"], 3),
+                       "backlash_designed_mm": r(f["backlash_mm"]["designed"], 3),
+                       "te_pp_um": r(1000 * f["transmission_error_mm"]["peak_to_peak"], 1)}
+    out["throated_gear1"] = pattern(f["contact_along_face"]["gear1"])
     spec = pipeline.load(ROOT / "configs" / "bevel_mitre.yaml").spec
     kit0 = build_bevel(spec)
     R, b, g = spec.pair.cone_distance, spec.gear2.face_width, out["gap_mm"]

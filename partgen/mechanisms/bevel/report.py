@@ -3,8 +3,11 @@ check), its subtitle and the assembly steps."""
 
 from __future__ import annotations
 
+import html
+
 import math
 
+from ...checks.contact_pattern import pattern_text
 from ...core.findings import Result
 from ...core.protocol import Trace
 from .kit import BevelKit, design_numbers
@@ -45,7 +48,8 @@ def report_sections(spec: BevelSpec, kit: BevelKit, result: Result, trace: Trace
     check = (f'<p class="{"ok" if result.ok else "fail"}">{f["samples"]} phases over a tooth pitch, exact 3-D: '
              f'largest overlap {f["max_overlap_mm3"]:.6f} mm³, backlash {f["backlash_mm"]["min"]:.3f}–'
              f'{f["backlash_mm"]["max"]:.3f} mm; ratio measured {s["ratio_measured"]:.9f} '
-             f'(relative error {s["ratio_relative_error"]:.1e}).</p>')
+             f'(relative error {s["ratio_relative_error"]:.1e}).</p>'
+             f'<p>{html.escape(pattern_text(f["contact_along_face"]).capitalize())}.</p>')
     return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")),
             ("Check", check)]
 

@@ -75,6 +75,7 @@ class CrossedSpec:
     material: str
     printer: PrinterLimits
     tol: float
+    throated: bool = False  # gear 2 cut by gear 1's (a worm's) envelope
 
     @property
     def centre_distance(self) -> float:
@@ -140,6 +141,13 @@ def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
                           f"(gear 2: {math.degrees(pair.helix[1]):g}°)")
     tol = g.chord_tolerance_mm
     gears = [gear_spec(pair, i, g.backlash_per_gear_mm, tol) for i in range(2)]
+    if g.throated and abs(d.shaft_angle_deg - 90.0) > 1e-9:
+        raise ConfigError(loaded.path, "gears.throated", f"a throated wheel is made for shafts at 90° (here "
+                          f"{d.shaft_angle_deg:g}°)")
+    if g.throated and not is_worm(pair):
+        raise ConfigError(loaded.path, "gears.throated", f"only a worm's wheel is throated: gear 1 has {pair.teeth[0]} "
+                          f"teeth at a transverse pressure angle of {math.degrees(pair.systems[0].pressure_angle):.1f}° "
+                          "(a worm has 1-3 starts, or 40° or more)")
     for i, gear in enumerate(gears):
         if isinstance(gear, ThreadSpec):
             try:
@@ -180,7 +188,7 @@ def resolve_crossed(loaded: LoadedDesign) -> CrossedSpec:
     spec = CrossedSpec(d.name, pair, gears[0], gears[1], (b1, b2), radii, running, press, gap, d.frame.base_thickness_mm,
                        d.frame.margin_mm, d.frame.block_wall_mm, d.frame.block_thickness_mm, z_c, d.checks.samples,
                        d.checks.friction_coefficient, d.checks.plate_margin_mm, d.material.density_g_cm3 / 1000.0, d.material.name, printer_limits(p),
-                       tol)
+                       tol, g.throated)
     # the blocks must clear gear 1's tip cylinder
     for c in spec.block_centres():
         near = math.hypot(max(c[0] - block_reach, 0.0), max(abs(c[1]) - d.frame.block_thickness_mm / 2, 0.0))
@@ -206,6 +214,53 @@ class CrossedKit(SpecKit):
                 "gear2": s.pose2(float(s.angle2(theta))), "pin2": pin}
 
 
+GENERATING_STEPS = 12  # the throated wheel's cut: cutter poses per tooth pitch of the worm (a scallop between two
+# is ~(p_t2 sin α_t / 12)² / (8 ρ), under a µm on the shipped worm's wheel)
+
+
+def cutter_spec(s: CrossedSpec) -> ThreadSpec:
+    """The worm as the throated wheel's cutter (a hob): its thread thickened by the wheel's thinning (j_2
+    along the wheel's pitch circle is j_2 cos β_2 along the normal, j_2 cos β_2 / cos β_1 along the worm's
+    transverse pitch circle), its tip the wheel's dedendum above its pitch cylinder (the wheel's root
+    clearance), its root as the worm's."""
+    p = s.pair
+    T1, T2 = p.systems
+    j = s.gear2.system.backlash_per_gear * math.cos(p.helix[1]) / math.cos(p.helix[0])
+    system = ToothSystem(T1.module, T1.pressure_angle, T2.dedendum_coeff * T2.module / T1.module, T1.dedendum_coeff,
+                         T1.cutter_tip_coeff, -j, 0.0, s.tol)
+    return ThreadSpec(p.teeth[0], system)
+
+
+def generating_phases(s: CrossedSpec) -> np.ndarray:
+    """Gear 1's turns (rad) at which the cutter is posed: every 1/GENERATING_STEPS of its tooth pitch while
+    the wheel's tooth 0 (± a pitch and a half) is within the worm's length (± half of it and a module)."""
+    z1, z2 = s.pair.teeth
+    reach = math.asin(min(1.0, (s.face_width[0] / 2 + s.pair.normal_module) / s.gear2.root_radius)) + 3 * math.pi / z2
+    step = 2 * math.pi / z1 / GENERATING_STEPS
+    lo, hi = (s.phase2 - reach) * z2 / z1, (s.phase2 + reach) * z2 / z1  # angle2(θ) = phase2 − θ z1/z2 within ±reach
+    return step * np.arange(math.floor(lo / step), math.ceil(hi / step) + 1)
+
+
+def _throated(s: CrossedSpec):
+    """Gear 2 cut by the worm's envelope (``geometry.throated``): the cutter posed in the wheel's frame as the
+    kit poses them, worm turned θ, wheel angle2(θ)."""
+    from ...geometry.throated import throated_wheel
+
+    c = cutter_spec(s)
+    b1, b2 = s.face_width
+    cutter = centred_thread(c.section(s.tol), c.tip_radius, b1, s.pair.twist(0, b1), 0.5 * c.root_radius, s.tol)
+    # at θ the cutter's pose in the wheel's frame is rot_z(−angle2(θ)) · pose2(0)⁻¹ · P1(θ); P1(θ) repeats
+    # every tooth pitch of the worm, so the phases fall into GENERATING_STEPS orientations
+    pitch1 = 2 * math.pi / s.pair.teeth[0]
+    phases = generating_phases(s)
+    steps = np.round(phases / (pitch1 / GENERATING_STEPS)).astype(int) % GENERATING_STEPS
+    inv0 = np.linalg.inv(s.pose2(0.0))
+    orientations = [(inv0 @ pose_z(0.0, 0.0, s.z_c, float(j * pitch1 / GENERATING_STEPS)),
+                     [float(s.angle2(t)) for t in phases[steps == j]]) for j in range(GENERATING_STEPS)]
+    return throated_wheel(cutter, orientations, s.gear2.teeth, s.gear2.tip_radius, s.centre_distance, c.tip_radius, b2,
+                          s.shaft_radius[1] + s.running / 2, s.tol)
+
+
 def build_crossed(s: CrossedSpec, progress=None) -> CrossedKit:
     say = progress or (lambda name: None)
     pair, tol = s.pair, s.tol
@@ -224,7 +279,10 @@ def build_crossed(s: CrossedSpec, progress=None) -> CrossedKit:
                          -b1 / 2 - low + 0.01, low)  # 0.01 mm into the teeth: one solid
         g1 = union([g1, collar])
     say("gear2")
-    g2 = centred_helical(s.gear2, b2, pair.twist(1, b2), r2s + s.running / 2, tol)
+    if s.throated:
+        g2 = _throated(s)
+    else:
+        g2 = centred_helical(s.gear2, b2, pair.twist(1, b2), r2s + s.running / 2, tol)
     # the base: a plate under everything, gear 1's post, two blocks round gear 2's pin
     say("base")
     reach = r2s + s.press / 2 + s.block_wall

@@ -10,6 +10,7 @@ three pitches round the pitch point), so every test is a small boolean.
 
 from __future__ import annotations
 
+import html
 import math
 from pathlib import Path
 
@@ -141,7 +142,8 @@ class CrossedHelical:
                 "tip_diameter_mm": [r6(2 * spec.gear1.tip_radius), r6(2 * spec.gear2.tip_radius)],
                 "centre_distance_mm": r6(spec.centre_distance), "ratio": f"{p.teeth[1]}/{p.teeth[0]}",
                 "face_width_mm": list(spec.face_width), "shaft_height_mm": r6(spec.z_c),
-                "sliding_per_rolling": r6(p.sliding_speed() / p.pitch_radius(0)), **self._locking(spec)}
+                "sliding_per_rolling": r6(p.sliding_speed() / p.pitch_radius(0)), "throated_wheel": spec.throated,
+                **self._locking(spec)}
 
     def _locking(self, spec: CrossedSpec) -> dict:
         """Efficiency both ways and the self-locking answer for the stated friction (gear 1 a worm:
@@ -245,6 +247,8 @@ class CrossedHelical:
 
     def _point_contact(self, spec: CrossedSpec) -> str:
         """What a short contact pattern means here (the finding's hint)."""
+        if spec.throated:
+            return "a throated wheel should bear across its face: its cut or the poses are off"
         if is_worm(spec.pair):
             return ("a plain helical wheel touches the worm at a point, which crosses little of the wheel's face "
                     "over a turn (a throated wheel wraps round the worm)")
@@ -302,7 +306,8 @@ class CrossedHelical:
 
     def bill_text(self, spec: CrossedSpec, man: dict, dest, seconds: float) -> str:
         p = spec.pair
-        what = (f"a {p.teeth[0]}-start ZI worm and a {p.teeth[1]}-tooth helical wheel" if is_worm(p) else
+        wheel = "throated wheel (cut by the worm's envelope)" if spec.throated else "helical wheel"
+        what = (f"a {p.teeth[0]}-start ZI worm and a {p.teeth[1]}-tooth {wheel}" if is_worm(p) else
                 f"crossed helical pair {p.teeth[0]}/{p.teeth[1]} teeth")
         lines = [f"{spec.name}: {what}, normal module {p.normal_module:g} mm, helix {math.degrees(p.helix[0]):g}° + "
                  f"{math.degrees(p.helix[1]):g}° (right hand) on shafts at {math.degrees(p.shaft_angle):g}°, "
@@ -357,7 +362,9 @@ class CrossedHelical:
         check = (f'<p class="{"ok" if result.ok else "fail"}">{f["samples"]} phases over a tooth pitch, exact 3-D: '
                  f'largest overlap {f["max_overlap_mm3"]:.6f} mm³, backlash {f["backlash_mm"]["min"]:.3f}–'
                  f'{f["backlash_mm"]["max"]:.3f} mm; ratio measured {s["ratio_measured"]:.9f} '
-                 f'(relative error {s["ratio_relative_error"]:.1e}).</p>')
+                 f'(relative error {s["ratio_relative_error"]:.1e}).</p>'
+                 + "".join(f'<p>{html.escape(pattern_text(f["contact_along_face"][g]).capitalize())}.</p>'
+                           for g in ("gear2", "gear1")))
         return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")),
                 ("Check", check)]
 

@@ -40,6 +40,10 @@ class CrossedGears(Strict):
     chord_tolerance_mm: Annotated[float, Field(ge=0.001, le=0.1)] = 0.01
     """Largest chord sagitta (deviation of the faceted outline from the exact curve) on flanks, fillets and tips;
     smaller is smoother and heavier STLs."""
+    throated: bool = False
+    """Only for a worm (gear 1 with 1-3 starts): gear 2, the wheel, cut by the worm's envelope (a throated,
+    enveloping wheel: the worm's thread, grown by the wheel's backlash, posed at the sampled phases of the mesh and
+    subtracted from the blank) instead of a plain helical wheel: line contact across its face instead of a point."""
 
 
 class CrossedShafts(Strict):
