@@ -40,7 +40,7 @@ import numpy as np
 from ..core.quantise import quantise
 from .tolerance import AUTO_SAMPLES, GROUPS, MarginModel, wilson
 
-__all__ = ["Knob", "least_allocation", "play_weight", "hole_slope", "Unit", "allocate_units", "gear_slopes",
+__all__ = ["Knob", "least_allocation", "play_weight", "hole_slope", "radial_slope", "Unit", "allocate_units", "gear_slopes",
            "joint_slopes"]
 
 PLAY_WHATS = ("backlash", "radial gap")  # the margins that are the kit's play (a mesh's, a running fit's)
@@ -75,6 +75,17 @@ def hole_slope(model: MarginModel) -> np.ndarray:
     else:
         bores[:] = False
     return model.coeff[bores].sum(axis=0) if bores.any() else np.zeros(len(model.margins))
+
+
+def radial_slope(model: MarginModel) -> np.ndarray:
+    """(K,) mm of margin per mm of *radial* clearance: a radial clearance Δ larger is each cavity it
+    sizes printed 2Δ larger, as a diameter — twice ``hole_slope`` where the model has running fits;
+    in a model without (the wrist: its sockets are the ``hole`` features of its ``mesh`` margins,
+    each dome's gaps opening by half the sockets' growth) every ``hole`` feature is such a cavity."""
+    if any(m.group == "joint" for m in model.margins):
+        return 2.0 * hole_slope(model)
+    cavities = np.array([f.kind == "hole" for f in model.features], dtype=bool)
+    return 2.0 * model.coeff[cavities].sum(axis=0) if cavities.any() else np.zeros(len(model.margins))
 
 
 def play_weight(model: MarginModel, slope: np.ndarray) -> float:

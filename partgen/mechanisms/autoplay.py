@@ -11,6 +11,9 @@ names none: ``gears.backlash_per_gear_mm`` as a backlash). Two roles:
   that much larger does (``design.allocate.hole_slope``: the fit's radial gap by half of it, and the
   meshes the bores' play is credited to); grid ``RUNNING_STEP_MM`` (0.01 mm diametral) from one
   step to ``RUNNING_MAX_MM``; built at ``AUTO_RUNNING_START_MM``.
+* ``radial``: a radial clearance (the wrist's sockets over its domes): ``running`` in radial mm, at
+  half its grid, start and most. A radial clearance Δ larger is each cavity it sizes printed 2Δ
+  larger, as a diameter (``design.allocate.radial_slope``: twice the cavities' coefficients).
 
 The design is built and checked once with every ``auto`` key at its start value; the mechanism's
 tolerance model of that check (gears seated by their meshes, docs/tolerance.md) gives every margin
@@ -48,7 +51,7 @@ from ..core.cache import recall, remember
 from ..core.quantise import quantise
 from ..core.protocol import tolerance_hook
 from ..design.allocate import (Knob, Unit, _draws, allocate_units, gear_slopes, hole_slope, joint_slopes,
-                               least_allocation, play_weight)
+                               least_allocation, play_weight, radial_slope)
 from ..design.tolerance import AUTO_SAMPLES, PLAY_MAX_MM, PLAY_STEP_MM
 from ..errors import ConfigError, DesignError
 
@@ -63,6 +66,7 @@ RUNNING_MAX_MM = 1.0
 ROLES = {  # role -> (label, start, step, most)
     "backlash": ("backlash per gear", AUTO_PLAY_START_MM, PLAY_STEP_MM, PLAY_MAX_MM),
     "running": ("running clearance, diametral", AUTO_RUNNING_START_MM, RUNNING_STEP_MM, RUNNING_MAX_MM),
+    "radial": ("clearance, radial", AUTO_RUNNING_START_MM / 2, RUNNING_STEP_MM / 2, RUNNING_MAX_MM / 2),
 }
 _DONE: dict = {}
 HELD_OUT = 7  # the chunk index of other prints an allocation's jams are reported on (the choice: chunk 0)
@@ -123,6 +127,8 @@ def _builds(raw: LoadedDesign, mech, values: dict) -> str | None:
 def _slope(role: str, model) -> np.ndarray:
     if role == "backlash":
         return np.array([m.per_backlash for m in model.margins], dtype=float)
+    if role == "radial":
+        return radial_slope(model)
     return hole_slope(model)
 
 

@@ -1,5 +1,6 @@
 """Checks of a wrist gear pair over its 2-DoF workspace: no interference, teeth always engaged,
-and the play in bending and in twist.
+and the play in bending and in twist; the check as the protocol runs it (with the cross gear's
+mate, ``mate.py``, and the printability findings) and its text.
 
 Play: from the pose (θ, ψ), gear 2 is turned — about its own axis (twist: the hand turning on
 the forearm) or about the axis through its centre normal to the bending plane (bend, without
@@ -14,13 +15,15 @@ import math
 import numpy as np
 
 from .kit import WristKit
+from .spec import WristSpec
+from ...checks.footer import check_footer
 from ...design import spherical as sph
 from ...geometry import wrist as W
 from ...geometry.measure import intersection
 from ...core.findings import Finding, Result
 from ...core.transforms import turn_about
 
-__all__ = ["check_wrist"]
+__all__ = ["check_wrist", "wrist_sampling", "mate_sampling", "check", "check_text"]
 
 
 PLAY_RESOLUTION_DEG = 0.005  # each direction's free turn is bisected to this (the figures: 0.01°)
@@ -90,3 +93,55 @@ def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: in
                        workspace_bend_deg=round(math.degrees(spec.max_bend), 3),
                        theta_max_deg=kit.figures["theta_max_deg"])
     return res
+
+
+def wrist_sampling(samples: int | None) -> dict:
+    """`check --samples N` on a wrist: about N poses on the (θ, ψ) grid in the default's proportion
+    (6 bends × 16 azimuths), N/4 random poses, and the play measured at 4 bends (3 under 96 poses).
+    None: the default (96 grid + 24 random poses, play at 4 bends)."""
+    if samples is None:
+        return {}
+    n_theta = max(2, round(math.sqrt(samples * 6 / 16)))
+    n_psi = max(4, round(samples / n_theta))
+    return {"grid": (n_theta, n_psi), "random_poses": samples // 4, "play_thetas": 4 if samples >= 96 else 3}
+
+
+def mate_sampling(samples: int | None) -> dict:
+    """`check --samples N` on the cross gear's mate: about N/8 mate turns at each of three tilts (3
+    to 13), the backlash at 3 turns (1 under 96 samples). None: the default (13 turns, 3)."""
+    if samples is None:
+        return {}
+    return {"psi_samples": max(3, min(13, samples // 8)), "backlash_poses": 3 if samples >= 96 else 1}
+
+
+def check(spec: WristSpec, kit: WristKit, samples: int | None = None, progress=None) -> Result:
+    from ...checks.bed import bed_findings
+    from ...checks.bores import bore_findings
+
+    res = check_wrist(kit, progress=progress, **wrist_sampling(samples))
+    if spec.mate is not None:
+        from .mate import check_mate
+
+        check_mate(kit, res, **mate_sampling(samples))
+    found, on_bed = bed_findings(kit.parts, kit.printer)
+    res.add(*found)
+    found, bores = bore_findings(kit.parts)
+    res.add(*found)
+    res.figures["printability"] = {**on_bed, "bores": bores}
+    return res
+
+
+def check_text(spec: WristSpec, result: Result, folder, seconds: float) -> str:
+    f = result.figures
+    lines = [f"{spec.name}: {f['poses']} poses over the workspace (bend ≤ {f['workspace_bend_deg']:g}°: a "
+             f"{f['grid'][0]} × {f['grid'][1]} (θ, ψ) grid and {f['random']} random poses)",
+             f"  largest overlap {f['max_overlap_mm3']:.4f} mm³, least tooth volume engaged "
+             f"{f['min_engaged_mm3']:.2f} mm³",
+             f"  {'θ on gear 1':>12}{'twist play':>12}{'bend play':>11}"]
+    lines += [f"  {r['theta_deg']:>11.1f}°{r['twist_play_deg']:>11.2f}°{r['bend_play_deg']:>10.2f}°" for r in f["play"]]
+    if "mate" in f:
+        m = f["mate"]
+        lines.append(f"  cross gear and its mate: {m['poses']} poses, largest overlap {m['max_overlap_mm3']:.5f} mm³ "
+                     f"(ε {m['epsilon_mm3']:g}), backlash {m['backlash_min_mm']:.3f}–{m['backlash_max_mm']:.3f} mm "
+                     "at the mate's pitch circle")
+    return "\n".join(lines + check_footer(result, seconds, folder))

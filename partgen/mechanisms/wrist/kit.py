@@ -1,5 +1,5 @@
 """A wrist gear pair as parts: gear 1 (dome teeth) and gear 2 (swept sockets), and gear 2's pose
-for any bend (θ, ψ) of the workspace."""
+for any bend (θ, ψ) of the workspace; the kit as the protocol builds, refuses and files it."""
 
 from __future__ import annotations
 
@@ -9,7 +9,12 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from shapely.geometry import box
 
-from ...core.protocol import ParamsKit
+from ...config.loader import LoadedDesign
+from ...config.yamlio import dump_yaml
+from ...core.protocol import Motion, ParamsKit
+from ...design.spherical import RangeError
+from ...errors import DesignError
+from ...geometry.measure import oversize
 from ...design import spherical as sph
 from .spec import WristSpec
 from ...geometry import wrist as W
@@ -19,7 +24,8 @@ from ...geometry.parts import DFit, Part
 from ...geometry.printing import least_support_flip
 from ...geometry.solid import SLIVER, extrude, float32_sound, print_arrays
 
-__all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max"]
+__all__ = ["WristSpec", "WristKit", "build_wrist", "workspace_theta_max", "animation_motion", "build", "refuse",
+           "design_summary", "kit_files", "plate_margin"]
 
 
 CAP_TURNS_DEG = (0.0, 0.5, 1.0, 1.5)  # tessellation phases tried for a gear's cap (see build_wrist)
@@ -156,3 +162,37 @@ def _gear_parts(spec: WristSpec, pair, theta_max: float, k: int = 0, say=lambda 
     # each lies on its larger flat face unless the other needs less support
     parts = [replace(p, print_flip=least_support_flip(p.solid, spec.printer.overhang_deg)) for p in parts]
     return parts, domes, pieces, int(poses.shape[0] * poses.shape[1]), (alpha1, alpha2)
+
+
+def animation_motion(motion: Motion, spec: WristSpec, kit: WristKit) -> Motion:
+    """The assembly's animation bends the pair over its workspace: θ from 0 to ``theta_max``."""
+    return Motion(motion.label, motion.unit, (0.0, float(kit.theta_max)))
+
+
+def build(spec: WristSpec, progress=None) -> WristKit:
+    try:
+        kit = build_wrist(spec, progress)
+    except (RangeError, ValueError) as e:
+        raise DesignError(str(e), "wrist") from None
+    return kit
+
+
+def refuse(spec: WristSpec, kit: WristKit) -> None:
+    for p, ext in oversize(kit.parts, spec.printer.envelope):
+        raise DesignError(f"{p.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
+                          "wrist.centre_distance_mm")
+
+
+def design_summary(kind: str, spec: WristSpec, kit: WristKit) -> dict:
+    return {"name": spec.name, "kind": kind, "nominal_ratio": spec.I,
+            "centre_distance_mm": spec.A, "longitudinal_pitch_mm": spec.long_pitch, **kit.figures}
+
+
+def kit_files(spec: WristSpec, kit: WristKit, raw: LoadedDesign) -> dict[str, bytes]:
+    data = raw.document()
+    data["printer"] = "printer.yaml"
+    return {"design.yaml": dump_yaml(data), "printer.yaml": dump_yaml(raw.printer_document())}
+
+
+def plate_margin(spec: WristSpec) -> float:
+    return 5.0

@@ -11,7 +11,7 @@ from .spec import WristSpec
 from ...geometry.cross_mate import MateSpec
 from ...config.loader import LoadedDesign, printer_fit, printer_limits
 
-__all__ = ["resolve_wrist"]
+__all__ = ["resolve_wrist", "findings"]
 
 MIN_BEND_DEG = 10.0  # degrees: the least workspace bend partgen builds sockets for (see resolve_wrist)
 
@@ -71,13 +71,25 @@ def resolve_wrist(loaded: LoadedDesign) -> WristSpec:
     return WristSpec(
         name=d.name, I=w.nominal_ratio, A=w.centre_distance_mm, long_pitch=w.longitudinal_pitch_mm,
         ring_teeth=tuple(w.ring_teeth), dome_radius=w.tooth.radius_mm, tooth_height=w.tooth.height_mm,
-        clearance=printer_fit(loaded, w.clearance_radial_mm, "running", "wrist.clearance_radial_mm") / 2
-        if w.clearance_radial_mm == "printer" else w.clearance_radial_mm, max_bend=math.radians(w.max_bend_deg), theta_steps=w.sweep.theta_steps,
+        clearance=_clearance(loaded), max_bend=math.radians(w.max_bend_deg), theta_steps=w.sweep.theta_steps,
         psi_steps=w.sweep.psi_steps, shaft_diameter=w.shaft_diameter_mm,
         press_clearance=printer_fit(loaded, w.press_fit_clearance_diametral_mm, "press_fit",
                                     "wrist.press_fit_clearance_diametral_mm"), base_height=w.base_height_mm, tol=w.chord_tolerance_mm,
         density=d.material.density_g_cm3 / 1000.0, material=d.material.name,
         printer=printer_limits(p), cross=cross, mate=mate)
+
+
+def _clearance(loaded: LoadedDesign) -> float:
+    """``wrist.clearance_radial_mm`` in mm (radial): the number, or half the printer's running fit
+    (diametral). ``auto`` never reaches here: loading a design (``pipeline.load``) puts auto play's
+    numbers in its place (mechanisms.autoplay)."""
+    c = loaded.design.wrist.clearance_radial_mm
+    if c == "printer":
+        return printer_fit(loaded, c, "running", "wrist.clearance_radial_mm") / 2
+    if c == "auto":
+        raise ConfigError(loaded.path, "wrist.clearance_radial_mm", "auto is chosen when partgen loads the design "
+                          "(mechanisms.autoplay); this design was resolved without it")
+    return c
 
 
 def _resolve_mate(loaded: LoadedDesign, c, cross) -> MateSpec:
@@ -100,3 +112,7 @@ def _resolve_mate(loaded: LoadedDesign, c, cross) -> MateSpec:
                           f"of the module ({0.25 * m:g} mm): the mate's teeth would be cut away")
     return MateSpec(teeth=mt.teeth, face_width=mt.face_width_mm, bore_diameter=mt.bore_diameter_mm,
                     clearance=mt.clearance_normal_mm, turn=math.radians(mt.turn_deg))
+
+
+def findings(spec) -> list:
+    return []

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, field_validator, model_validator
 
-from ...config.schema import (DesignHeader, Finite, Gap, Length, Strict)
+from ...config.schema import (DesignHeader, Finite, Gap, Length, Strict, ToleranceTarget)
 
 __all__ = ["WristDesign"]
 
@@ -97,9 +97,10 @@ class Wrist(Strict):
     """Teeth on each ring, from the pole outward (1: a tooth on the pole)."""
     tooth: Tooth
     """Gear 1's teeth."""
-    clearance_radial_mm: Finite | Literal["printer"]
+    clearance_radial_mm: Finite | Literal["printer", "auto"]
     """Radial clearance: gear 1's domes are grown by this before they cut gear 2's sockets; printer: half the printer
-    profile's measured running fit (diametral)."""
+    profile's measured running fit (diametral); auto: the least (on a 0.005 mm grid) with which a print jams with
+    probability at most tolerance.max_jam_probability on the design's printer (docs/tolerance.md)."""
     max_bend_deg: Annotated[float, Field(gt=0, lt=180)]
     """Largest bend between the two gears' axes (θ + φ) the workspace reaches and check covers; at least 10."""
     sweep: Sweep = Sweep()
@@ -119,7 +120,10 @@ class Wrist(Strict):
 
 
 class WristDesign(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"wrist.clearance_radial_mm": "radial"}  # mechanisms.autoplay
     kind: Literal["wrist"]
     """The mechanism this file designs: `wrist` selects these keys."""
     wrist: Wrist
     """The wrist gear pair: pitch surfaces, rings of teeth, clearance, workspace and shafts."""
+    tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that auto play (wrist.clearance_radial_mm) is chosen for, and above which check warns."""

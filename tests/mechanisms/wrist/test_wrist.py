@@ -126,7 +126,7 @@ def test_wrist_check_passes_and_measures_play(built):
     (domes hold twist only through the teeth beside the contact: several degrees); `check
     --samples 18` looks at about 18 grid poses and 4 random ones, and the play at 3 bends."""
     from partgen.mechanisms import REGISTRY
-    from partgen.mechanisms.wrist.mechanism import wrist_sampling
+    from partgen.mechanisms.wrist.checks import wrist_sampling
     spec, kit = built
     res = REGISTRY["wrist"].check(spec, kit, 18)
     grid = wrist_sampling(18)["grid"]
@@ -218,7 +218,7 @@ def test_wrist_report_page(tmp_path, kit_of, prime_kit_cache):
 
 
 def test_check_samples_set_the_wrist_poses():
-    from partgen.mechanisms.wrist.mechanism import wrist_sampling
+    from partgen.mechanisms.wrist.checks import wrist_sampling
 
     assert wrist_sampling(None) == {}
     assert wrist_sampling(96) == {"grid": (6, 16), "random_poses": 24, "play_thetas": 4}  # the default's
