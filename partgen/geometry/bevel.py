@@ -5,7 +5,6 @@ cut to the face between the heel and toe back cones (a revolved ring), on a hub,
 
 from __future__ import annotations
 
-import math
 
 import manifold3d as m3d
 import numpy as np

@@ -88,7 +88,7 @@ def mate_figure(spec, rows, png) -> None:
     ax[0].set_ylabel("z (mm), the cross gear's pole axis")
     ax[0].set_title("mid-plane (x = 0): the mate's exact generated section")
     ax[0].legend(fontsize=8, loc="lower right")
-    psi, phi, te = rows[:, 0], rows[:, 1], rows[:, 2]
+    psi, te = rows[:, 0], rows[:, 2]
     ax[1].plot(np.degrees(psi), te * cs.pitch_radius * 1000, "o-", ms=3)
     ax[1].set_xlabel("mate turn ψ (°)")
     ax[1].set_ylabel("transmission error at the cross gear's pitch circle (µm)")
