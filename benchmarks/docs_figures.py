@@ -226,7 +226,8 @@ def calibrate(tmp: Path) -> dict:
 
 def wrist(tmp: Path) -> dict:
     """The wrist pairs' check: poses, the least engaged volume, bend and twist play over the bend; the
-    cross gear's mate: overlap, backlash, ratio and transmission error."""
+    cross gear's mate: overlap, backlash, ratio and transmission error; the radial clearance auto
+    chooses for the quasi-ellipsoidal pair."""
     rows, mates = [], []
     for name in ("wrist_sphere", "wrist_quasi_ellipsoid"):
         f = partgen("check", f"configs/{name}.yaml", "--no-plates", "-o", str(tmp / name))["figures"]
@@ -240,7 +241,14 @@ def wrist(tmp: Path) -> dict:
             mates.append([f"`{name}.yaml`", m["poses"], f"{m['max_overlap_mm3']:.5f}", m["epsilon_mm3"],
                           f"{m['backlash_min_mm']:.3f}–{m['backlash_max_mm']:.3f}", t["backlash_mid_mm"],
                           f"{t['ratio']:.9f}", f"{t['ratio_error']:.1e}", t["te_pp_um"]])
-    return {"table": table(["design", "poses", "least engaged mm³", "bend play °", "twist play at the pole °",
+    # auto: the least radial socket clearance that meets the target (mechanisms.autoplay, role radial)
+    key = "wrist.clearance_radial_mm"
+    a = partgen("build", "configs/wrist_quasi_ellipsoid.yaml", "--set", f"{key}=auto", "-o", str(tmp / "wrist_auto"))
+    a = a["auto_play"]
+    auto = {"value_mm": a["values"][key], "p_pct": r(100 * a["probability"]), "buys": a["buys"].get(key, 0),
+            "samples": f"{a['samples']:,}"}
+    return {"auto": auto,
+            "table": table(["design", "poses", "least engaged mm³", "bend play °", "twist play at the pole °",
                             "twist play at the edge °", "edge θ °"], rows),
             "mate": table(["design", "poses", "largest overlap mm³", "ε mm³", "backlash mm (3-D)",
                            "backlash mm (mid-plane)", "ratio", "ratio error", "transmission error µm p-p"], mates)}
