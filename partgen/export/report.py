@@ -4,6 +4,8 @@ the page opens offline, from anywhere."""
 
 from __future__ import annotations
 
+import numpy as np
+
 import base64
 import html
 import math
@@ -25,6 +27,29 @@ img{max-width:100%}.parts img{width:150px}.steps li{margin-bottom:1em}.steps .gr
 
 def data_uri(data: bytes, mime: str) -> str:
     return f"data:{mime};base64,{base64.b64encode(data).decode()}"
+
+
+def transmission_figure(title: str, angle_rad, te_mm, backlash_mm, xlabel: str, ylabel: str,
+                        markers: bool = True) -> bytes:
+    """PNG of a gear pair's transmission error (the driven flank) and backlash, µm, against an angle
+    (rad, drawn in °): the figure `trace` writes as transmission.png (``markers``: one per phase)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(9, 4))
+    deg = np.degrees(angle_rad)
+    style = (("-o", "-s"), {"ms": 3}) if markers else (("-", "-"), {})
+    ax.plot(deg, 1000 * te_mm, style[0][0], **style[1], label="transmission error (driven flank), µm")
+    ax.plot(deg, 1000 * backlash_mm, style[0][1], **style[1], label="backlash, µm")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    return figure_png(fig, 110)
 
 
 def figure_png(fig, dpi: int = 110, bbox_inches: str | None = None) -> bytes:

@@ -11,7 +11,7 @@ import numpy as np
 
 from ...checks.contact_pattern import pattern_text
 from ...core.protocol import Trace
-from ...export.report import figure_png
+from ...export.report import transmission_figure
 from .contact import contact_along_face, contact_angles, designed_backlash, measured_ratio
 from .kit import BevelKit
 from .resolve import BevelSpec
@@ -44,7 +44,9 @@ def trace(kind: str, spec: BevelSpec, kit: BevelKit, samples: int | None, out: P
              "contact_along_face": contact_along_face(kit, thetas[:-1], {k: v[:-1] for k, v in play.items()})}
     files = []
     if out is not None:
-        (out / "transmission.png").write_bytes(_figure(spec, thetas, te * r2, backlash))
+        (out / "transmission.png").write_bytes(transmission_figure(
+            f"{spec.name}: exact 3-D contact of the printed solids", thetas, te * r2, backlash,
+            "gear 1 angle (°), one tooth pitch", "µm along gear 2's heel pitch circle"))
         files = ["transmission.png"]
     return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_rad", "backlash_mm"),
                  data=np.column_stack([thetas, out_angle, te, backlash]))
@@ -66,22 +68,3 @@ def trace_text(spec: BevelSpec, trace: Trace, folder) -> str:
     if folder:
         lines.append(f"plots: {folder}/{', '.join(trace.files)}")
     return "\n".join(lines)
-
-
-def _figure(spec: BevelSpec, thetas: np.ndarray, te_mm: np.ndarray, backlash: np.ndarray) -> bytes:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(9, 4))
-    deg = np.degrees(thetas)
-    ax.plot(deg, 1000 * te_mm, "-o", ms=3, label="transmission error (driven flank), µm")
-    ax.plot(deg, 1000 * backlash, "-s", ms=3, label="backlash, µm")
-    ax.set_xlabel("gear 1 angle (°), one tooth pitch")
-    ax.set_ylabel("µm along gear 2's heel pitch circle")
-    ax.set_title(f"{spec.name}: exact 3-D contact of the printed solids")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    return figure_png(fig, 110)

@@ -23,7 +23,7 @@ from ...core.findings import Finding, Result
 from ...core.quantise import r6
 from ...core.protocol import Motion, Trace
 from ...errors import DesignError
-from ...export.report import figure_png
+from ...export.report import transmission_figure
 from ...checks.contact3d import VOLUME_EPS, overlaps_over_pitch
 from ...checks.contact3d import contact_angles as _contact_angles, measured_ratio as _measured_ratio
 from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern, pattern_finding, pattern_text
@@ -288,7 +288,9 @@ class CrossedHelical:
                  "contact_along_face": contact_along_face(kit, thetas[:-1], {k: v[:-1] for k, v in play.items()})}
         files = []
         if out is not None:
-            (out / "transmission.png").write_bytes(_figure(spec, thetas, te * r2, backlash))
+            (out / "transmission.png").write_bytes(transmission_figure(
+                f"{spec.name}: exact 3-D contact of the printed solids", thetas, te * r2, backlash,
+                "gear 1 angle (°), one tooth pitch", "µm along gear 2's pitch circle"))
             files = ["transmission.png"]
         return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_rad", "backlash_mm"),
                      data=np.column_stack([thetas, out_angle, te, backlash]))
@@ -372,25 +374,6 @@ class CrossedHelical:
         if is_worm(spec.pair):
             return f"{spec.gear1.teeth}-start worm and {spec.gear2.teeth}-tooth wheel"
         return f"{spec.gear1.teeth}/{spec.gear2.teeth} crossed helical pair"
-
-
-def _figure(spec: CrossedSpec, thetas: np.ndarray, te_mm: np.ndarray, backlash: np.ndarray) -> bytes:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(9, 4))
-    deg = np.degrees(thetas)
-    ax.plot(deg, 1000 * te_mm, "-o", ms=3, label="transmission error (driven flank), µm")
-    ax.plot(deg, 1000 * backlash, "-s", ms=3, label="backlash, µm")
-    ax.set_xlabel("gear 1 angle (°), one tooth pitch")
-    ax.set_ylabel("µm along gear 2's pitch circle")
-    ax.set_title(f"{spec.name}: exact 3-D contact of the printed solids")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    return figure_png(fig, 110)
 
 
 MECHANISM = CrossedHelical()

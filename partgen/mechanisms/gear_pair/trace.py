@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ...core.protocol import Trace
-from ...export.report import figure_png
+from ...export.report import transmission_figure
 from .checks import sweep
 from .kit import PairKit
 from .resolve import PairSpec
@@ -31,7 +31,9 @@ def trace(kind: str, spec: PairSpec, kit: PairKit, samples: int | None, out: Pat
                              "designed": 2 * spec.gear1.system.backlash_per_gear}}
     files = []
     if out is not None:
-        (out / "transmission.png").write_bytes(_figure(spec, out_angle, te * r2, backlash))
+        (out / "transmission.png").write_bytes(transmission_figure(
+            f"{spec.name}: over one turn of the output, from the printed outlines", out_angle, te * r2, backlash,
+            "output angle (°)", "µm along the output's pitch circle", markers=False))
         files = ["transmission.png"]
     return Trace(stats, files, columns=("input_rad", "output_rad", "transmission_error_rad", "backlash_mm"),
                  data=np.column_stack([thetas, out_angle, te, backlash]))
@@ -49,22 +51,3 @@ def trace_text(spec: PairSpec, trace: Trace, folder) -> str:
     if folder:
         lines.append(f"plots: {folder}/{', '.join(trace.files)}")
     return "\n".join(lines)
-
-
-def _figure(spec: PairSpec, out_angle: np.ndarray, te_mm: np.ndarray, backlash: np.ndarray) -> bytes:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(9, 4))
-    deg = np.degrees(out_angle)
-    ax.plot(deg, 1000 * te_mm, label="transmission error (driven flank), µm")
-    ax.plot(deg, 1000 * backlash, label="backlash, µm")
-    ax.set_xlabel("output angle (°)")
-    ax.set_ylabel("µm along the output's pitch circle")
-    ax.set_title(f"{spec.name}: over one turn of the output, from the printed outlines")
-    ax.grid(alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    return figure_png(fig, 110)
