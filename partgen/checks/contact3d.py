@@ -18,9 +18,10 @@ import numpy as np
 from .contact import free_turn
 
 from ..core.transforms import pose_z
-from ..geometry.measure import intersection
+from ..core.findings import Finding, Result
+from ..geometry.measure import intersection, min_gap
 
-__all__ = ["VOLUME_EPS", "turned", "overlaps_over_pitch", "contact_angles", "measured_ratio"]
+__all__ = ["VOLUME_EPS", "turned", "overlaps_over_pitch", "contact_angles", "measured_ratio", "pair_check"]
 
 VOLUME_EPS = 1e-9  # mm³: below this an intersection is the boolean's rounding, not material
 
@@ -76,3 +77,60 @@ def measured_ratio(near: Callable, angle2: Callable, reach: float, guess: float,
     c = contact_angles(near, ends, reach, guess, tol)["ahead"]
     loaded = [float(angle2(t)) + d for t, d in zip(ends, c)]
     return abs((ends[1] - ends[0]) / (loaded[1] - loaded[0])), float(c[0]), float(c[1])
+
+
+def pair_check(res: Result, kit, thetas: np.ndarray, play: dict, r2: float, running_mm: float, designed_mm: float,
+               contact: dict, contact_finding, extra: dict | None = None) -> None:
+    """The findings and figures of a pair of solid gears checked exactly in 3-D (``gear1``, ``gear2``
+    in a frame of ``base`` and ``pin2``), added to ``res`` in this order: the teeth overlapping at a
+    phase, no backlash left, the gears against the frame over a turn of gear 1 (4 angles: overlap,
+    closest gap), the bores gripping their shafts (``running_mm``: the diametral running clearance),
+    the contact along the face (``contact_finding``, the mechanism's), the bed and the bores.
+    ``play``: ``contact_angles`` at ``thetas`` (rad of gear 2); ``r2``: the radius (mm) its play is
+    measured along; ``designed_mm``: the backlash designed there; ``extra``: figures of the
+    mechanism's own, placed after the phases."""
+    from .bed import bed_findings
+    from .bores import bore_findings
+
+    n = len(thetas)
+    bad = np.flatnonzero(play["overlap_mm3"] > VOLUME_EPS)
+    if len(bad):
+        k = bad[np.argmax(play["overlap_mm3"][bad])]
+        res.add(Finding("interference", "fail", f"gear1 and gear2 overlap by {play['overlap_mm3'][k]:.4f} mm³ at "
+                        f"{len(bad)} of {n} phases", ("gear1", "gear2"), float(thetas[k]),
+                        float(play["overlap_mm3"][k]), "mm3", key="gears.backlash_per_gear_mm"))
+    backlash = (play["ahead"] - play["behind"]) * r2
+    if backlash.min() <= 0:
+        res.add(Finding("mesh", "fail", "the teeth jam: no backlash left", ("gear1", "gear2"),
+                        float(thetas[np.argmin(backlash)]), float(backlash.min()), "mm",
+                        key="gears.backlash_per_gear_mm"))
+    # the frame: the gears against the base and the pin, exact 3-D, over a turn of gear 1
+    closest = {}
+    for t in np.linspace(0.0, 2 * math.pi, 4, endpoint=False):
+        P = kit.poses(float(t))
+        for g in ("gear1", "gear2"):
+            for other in ("base", "pin2"):
+                v = intersection(kit.part(g).solid, P[g], kit.part(other).solid, P[other])[0]
+                if v > VOLUME_EPS:
+                    res.add(Finding("interference", "fail", f"{g} and {other} overlap by {v:.4f} mm³",
+                                    (g, other), float(t), v, "mm3", key="frame"))
+                gap = min_gap(kit.part(g).solid, P[g], kit.part(other).solid, P[other], 5.0)
+                closest[f"{g}-{other}"] = min(closest.get(f"{g}-{other}", math.inf), gap)
+    radial = running_mm / 2
+    if radial <= 0:
+        res.add(Finding("fit", "fail", f"the bores grip their shafts ({radial:.3f} mm radial gap)", ("gear1", "base"),
+                        value=radial, unit="mm", key="shafts.running_clearance_diametral_mm"))
+    res.add(contact_finding)
+    te = play["ahead"] * r2
+    res.figures.update(samples=n, phases_over="one tooth pitch of gear 1", **(extra or {}),
+                       max_overlap_mm3=float(play["overlap_mm3"].max()), contact_along_face=contact,
+                       backlash_mm={"min": float(backlash.min()), "max": float(backlash.max()),
+                                    "designed": designed_mm},
+                       transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
+                       closest_mm={k: float(round(v, 4)) for k, v in closest.items()}, radial_gap_mm=float(radial))
+    found, on_bed = bed_findings(kit.parts, kit.printer)
+    res.add(*found)
+    found, bores = bore_findings(kit.parts)
+    res.add(*found)
+    res.figures["printability"] = {**on_bed, "bores": bores}
+
