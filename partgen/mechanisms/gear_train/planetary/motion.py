@@ -112,16 +112,20 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
                         box(*(s.sun.pitch_radius * u - h), *(s.sun.pitch_radius * u + h)), w2, w2.buffer(grow_r)))
     # what both senses share at each angle: the sun's flanks in each window, each planet at its
     # nominal angle and the part of it that meets the sun
+    # a planet moved t along its tangent starts turned t / r_p (its sun side back in the middle of the sun
+    # mesh's backlash), the ring 2t / r_r (the planet's ring side moved 2t): each search starts free
+    t_p = planet_shift[1]
+    start_p, start_r = t_p / s.planet.pitch_radius, 2 * t_p / rr
     shared = []
     for k, th in enumerate(thetas):
         c = nominal[k]
         sun = _place(secs["sun"], th - c, sun_shift)
-        ring0 = _place(secs["ring"], s.ring_phase - c, (0.0, 0.0))
+        ring0 = _place(secs["ring"], s.ring_phase - c + start_r, (0.0, 0.0))
         shapely.prepare(sun)  # indexed once per angle: each planet is tested against it
         shapely.prepare(ring0)
         row = []
         for i, (pc, w1, w2, _) in enumerate(windows):
-            phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
+            phi = s.planet_angle(i, float(th)) - c + start_p  # nominal, carrier frame
             planet = _place(secs["planet"], phi, pc)
             # whole outlines: tip and trochoidal interference anywhere
             out["overlap_mm2"][k, i] = sun.intersection(planet).area if sun.intersects(planet) else 0.0
@@ -142,7 +146,7 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
                 last[i, 0] = _contact(fixed, piece, pc, sense, reach_p, tol, last.get((i, 0)))
                 phi_act = phi + sense * last[i, 0]
                 planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
-                ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
+                ring_nom = s.ring_phase - c + start_r + (zp / zr) * (phi_act - phi)
                 ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2_grown)
                 last[i, 1] = _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol, last.get((i, 1)))
                 rings.append(ring_nom + sense * last[i, 1])
