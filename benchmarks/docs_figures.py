@@ -384,8 +384,9 @@ def exact(tmp: Path) -> dict:
 
 
 def play(tmp: Path) -> dict:
-    """What play costs: the default chain's pen error band and the reducer's lost motion, as
-    `partgen trace --json` reports them."""
+    """What play costs: the default chain's pen error band, the reducer's, the planetary set's and the
+    rack's lost motion, as `partgen trace --json` reports them; the planetary's and the rack's nominal
+    lost motion measured exactly on the printed outlines (each body where the model puts it in its bore)."""
     t = partgen("trace", "configs/butterfly.yaml", "-o", str(tmp / "chain"))
     b = t["pen_error_band_mm"]
     free = b["link_free_angle_arcmin"]
@@ -399,7 +400,64 @@ def play(tmp: Path) -> dict:
             "reducer": {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
                         "bores_arcmin": r(lm["bores"], 1), "measured_min_arcmin": r(g["backlash_arcmin"]["min"], 1),
                         "measured_max_arcmin": r(g["backlash_arcmin"]["max"], 1),
-                        "te_band_arcmin": r(lm["transmission_error_band_arcmin"]["width"], 1)}}
+                        "te_band_arcmin": r(lm["transmission_error_band_arcmin"]["width"], 1)},
+            "planetary": _planetary_play(tmp), "rack": _rack_play(tmp)}
+
+
+def _planetary_play(tmp: Path) -> dict:
+    import math
+
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.mechanisms.gear_train.common.play import ARCMIN
+    from partgen.mechanisms.gear_train.planetary.motion import turn_planetary
+
+    t = partgen("trace", "configs/gear_train_planetary.yaml", "-o", str(tmp / "planetary"))
+    lm, band = t["lost_motion_arcmin"], t["lost_motion_arcmin"]["transmission_error_band_arcmin"]
+    loaded = pipeline.load("configs/gear_train_planetary.yaml")
+    kit, c = pipeline.make_kit(loaded), loaded.spec.running / 2
+    th = np.linspace(0.0, 2 * math.pi, 6, endpoint=False)
+    fwd, back = (turn_planetary(kit, th, planet_shift=(0.0, sg * c)) for sg in (1.0, -1.0))
+    exact = (np.maximum(fwd["coast"], back["coast"]) - np.minimum(fwd["drive"], back["drive"])) * ARCMIN
+    rows = {row["share"]: row for row in lm["shares"]}
+    return {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
+            "pins_arcmin": r(rows["a planet on its pin"]["at_output"], 1), "worst_arcmin": r(lm["worst_case"], 1),
+            "p95_arcmin": r(lm["p95"], 1), "p50_arcmin": r(lm["p50"], 1), "prints": lm["prints"],
+            "measured_min_arcmin": r(t["backlash_arcmin"]["min"], 1),
+            "measured_max_arcmin": r(t["backlash_arcmin"]["max"], 1),
+            "exact_min_arcmin": r(float(exact.min()), 1), "exact_max_arcmin": r(float(exact.max()), 1),
+            "te_band_arcmin": r(band["width"], 1), "te_band_p95_arcmin": r(band["p95_width"], 1),
+            "te_band_worst_arcmin": r(band["worst_case_width"], 1), "accuracy_mm": lm["accuracy_mm"]}
+
+
+def _rack_play(tmp: Path) -> dict:
+    import math
+
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.mechanisms.gear_train.rack.motion import turn_rack
+
+    t = partgen("trace", "configs/gear_train_rack.yaml", "-o", str(tmp / "rack"))
+    lm, band = t["lost_motion_mm"], t["lost_motion_mm"]["transmission_error_band_mm"]
+    loaded = pipeline.load("configs/gear_train_rack.yaml")
+    kit, s = pipeline.make_kit(loaded), loaded.spec
+    al, c = s.system.pressure_angle, s.running / 2
+    th = np.linspace(*s.thetas_range, 9)
+    fwd = turn_rack(kit, th, pinion_at=(c * math.cos(al), c * math.sin(al)), rack_dy=-c)
+    back = turn_rack(kit, th, pinion_at=(-c * math.cos(al), c * math.sin(al)), rack_dy=-c)
+    exact = fwd["coast"] - back["drive"]
+    rows = {row["share"]: row for row in lm["shares"]}
+    return {"total_mm": r(lm["total"], 3), "backlash_mm": r(lm["backlash"], 3),
+            "shaft_mm": r(rows["the pinion's shaft in the base"]["at_output"], 3),
+            "rail_mm": r(rows["the rack against its rail"]["at_output"], 3), "worst_mm": r(lm["worst_case"], 3),
+            "p95_mm": r(lm["p95"], 3), "p50_mm": r(lm["p50"], 3), "pinion_arcmin": r(lm["pinion_arcmin"]["total"], 0),
+            "pinion_p95_arcmin": r(lm["pinion_arcmin"]["p95"], 0),
+            "measured_min_mm": r(t["backlash_mm"]["min"], 3), "measured_max_mm": r(t["backlash_mm"]["max"], 3),
+            "exact_min_mm": r(float(exact.min()), 3), "exact_max_mm": r(float(exact.max()), 3),
+            "te_band_um": r(1000 * band["width"], 0), "te_band_p95_um": r(1000 * band["p95_width"], 0),
+            "te_band_worst_um": r(1000 * band["worst_case_width"], 0)}
 
 
 def lissajous(tmp: Path) -> dict:

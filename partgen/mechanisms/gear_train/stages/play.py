@@ -21,10 +21,9 @@ import math
 import numpy as np
 
 from ....design import involute
+from ..common.play import ARCMIN, te_band
 
 __all__ = ["lost_motion"]
-
-ARCMIN = 60 * 180 / math.pi
 
 
 def lost_motion(spec, te_drive_arcmin: np.ndarray | None = None, te_coast_arcmin: np.ndarray | None = None) -> dict:
@@ -52,7 +51,5 @@ def lost_motion(spec, te_drive_arcmin: np.ndarray | None = None, te_coast_arcmin
     res = {"total": round(lash + bores, 4), "backlash": round(lash, 4), "bores": round(bores, 4),
            "radial_play_mm": round(c, 6), "meshes": rows}
     if te_drive_arcmin is not None and te_coast_arcmin is not None:
-        lo = float(np.min(te_drive_arcmin)) - bores / 2
-        hi = float(np.max(te_coast_arcmin)) + bores / 2
-        res["transmission_error_band_arcmin"] = {"low": round(lo, 4), "high": round(hi, 4), "width": round(hi - lo, 4)}
+        res["transmission_error_band_arcmin"] = te_band(te_drive_arcmin, te_coast_arcmin, bores)
     return res
