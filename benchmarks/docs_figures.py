@@ -185,7 +185,12 @@ def sweep(tmp: Path) -> dict:
 
 
 def bennett(tmp: Path) -> dict:
-    """The Bennett butterfly's balance, clearance, stance and pins, from its check."""
+    """The Bennett butterfly's balance, clearance, stance and pins, from its check; the pins' clearance
+    auto chooses (mechanisms.autoplay, role running)."""
+    key = "pin.clearance_diametral_mm"
+    a = partgen("build", "configs/bennett_butterfly.yaml", "--set", f"{key}=auto", "-o", str(tmp / "auto"))["auto_play"]
+    auto = {"value_mm": a["values"][key], "p_pct": r(100 * a["probability"]), "buys": a["buys"].get(key, 0),
+            "samples": f"{a['samples']:,}", "fits": a["joints"]}
     f = partgen("check", "configs/bennett_butterfly.yaml", "-o", str(tmp / "kit"), "--no-plates")["figures"]
     b, base = f["balance_mm"], f["base"]
     short = [v for k, v in b.items() if k.startswith("one_slug_short")]
@@ -201,7 +206,7 @@ def bennett(tmp: Path) -> dict:
         "com_height_mm": r(base["com_height_mm"], 0), "links_above_table_mm": r(base["links_above_table_mm"], 0),
         "total_g": r(base["total_g"], 0),
         "pins": ", ".join(f"{n} × {float(length):g}" for length, n in pins),
-        "pin_count": sum(n for _, n in pins),
+        "pin_count": sum(n for _, n in pins), "auto": auto,
     }
 
 
