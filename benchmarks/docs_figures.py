@@ -185,7 +185,12 @@ def sweep(tmp: Path) -> dict:
 
 
 def bennett(tmp: Path) -> dict:
-    """The Bennett butterfly's balance, clearance, stance and pins, from its check."""
+    """The Bennett butterfly's balance, clearance, stance and pins, from its check; the pins' clearance
+    auto chooses (mechanisms.autoplay, role running)."""
+    key = "pin.clearance_diametral_mm"
+    a = partgen("build", "configs/bennett_butterfly.yaml", "--set", f"{key}=auto", "-o", str(tmp / "auto"))["auto_play"]
+    auto = {"value_mm": a["values"][key], "p_pct": r(100 * a["probability"]), "buys": a["buys"].get(key, 0),
+            "samples": f"{a['samples']:,}", "fits": a["joints"]}
     f = partgen("check", "configs/bennett_butterfly.yaml", "-o", str(tmp / "kit"), "--no-plates")["figures"]
     b, base = f["balance_mm"], f["base"]
     short = [v for k, v in b.items() if k.startswith("one_slug_short")]
@@ -201,7 +206,7 @@ def bennett(tmp: Path) -> dict:
         "com_height_mm": r(base["com_height_mm"], 0), "links_above_table_mm": r(base["links_above_table_mm"], 0),
         "total_g": r(base["total_g"], 0),
         "pins": ", ".join(f"{n} × {float(length):g}" for length, n in pins),
-        "pin_count": sum(n for _, n in pins),
+        "pin_count": sum(n for _, n in pins), "auto": auto,
     }
 
 
@@ -588,9 +593,148 @@ def contact(tmp: Path) -> dict:
     return out
 
 
+def crossed(tmp: Path) -> dict:
+    """The shipped crossed helical pair (45° + 45°) and worm, built, checked and traced (the CLI's
+    JSON); each gear's flanks on its float32 mesh against the analytic helicoid (sections at
+    three heights against the transverse involute turned by the helix; the worm's thread against its
+    base circle's involute, as the tests measure them); the check's overlap with -0.1 mm backlash per
+    gear; every STL read back; the pair at 60° (30° + 30°); the bevel's crown-gear limit for 15/25."""
+    import dataclasses
+
+    import numpy as np
+    import trimesh
+    import yaml
+    from shapely import contains_xy
+
+    from partgen import pipeline
+    from partgen.geometry.solid import mesh_arrays
+    from partgen.mechanisms.crossed_helical.kit import build_crossed, gear_spec
+    from partgen.mechanisms.crossed_helical.mechanism import mesh_overlaps
+    from partgen.testing import measure_spur_gear, mesh_problems, section_outline
+
+    def float32(solid) -> trimesh.Trimesh:
+        v, f = mesh_arrays(solid)
+        return trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
+
+    def helical_flanks(spec, kit) -> dict:
+        """Both gears sectioned at three heights: the flank's worst deviation from the involute (µm,
+        about its mean: measure_spur_gear), the tooth thickness against the design (µm) and tooth 0's
+        centre against the helix's turn there (rad)."""
+        worst, thick, turn, step = 0.0, 0.0, 0.0, 0.0
+        for i, name in enumerate(("gear1", "gear2")):
+            gear, b = (spec.gear1, spec.gear2)[i], spec.face_width[i]
+            mesh = float32(kit.part(name).solid)
+            twist = spec.pair.twist(i, b)
+            for z in (-0.4 * b, 0.05 * b, 0.45 * b):
+                out = section_outline(mesh, z)
+                m = measure_spur_gear(out, gear.teeth, gear.module, gear.system.pressure_angle, centre=(0.0, 0.0))
+                worst = max(worst, m.flank_deviation)
+                thick = max(thick, abs(m.tooth_thickness - gear.tooth_thickness))
+                turned, r_p = twist * z / b, gear.pitch_radius
+                th = turned + np.linspace(-math.pi / gear.teeth, math.pi / gear.teeth, 20001)
+                step = max(step, float(th[1] - th[0]) / 2)  # the centre's resolution
+                centre = th[contains_xy(out, r_p * np.cos(th), r_p * np.sin(th))].mean()
+                turn = max(turn, abs(centre - turned))
+        return {"flank_um": r(1000 * worst, 1), "thickness_um": r(1000 * thick, 1),
+                "turn": f"{turn:.0e} rad" if turn > step else f"{step:.0e} rad (the measurement's resolution)"}
+
+    def thread_flanks(spec, kit) -> dict:
+        """The worm's sections at three heights against the involute of its base circle turned by
+        z tan β / r, along the flank's normal (µm)."""
+        t, b = spec.gear1, spec.face_width[0]
+        mesh = float32(kit.part("gear1").solid)
+        rate = spec.pair.twist(0, b) / b
+        devs = []
+        for z in (-0.3 * b, 0.02 * b, 0.4 * b):
+            P = np.asarray(section_outline(mesh, z).exterior.coords)
+            seg = np.diff(P, axis=0)
+            dense = np.concatenate([P[:-1] + seg * s for s in np.linspace(0, 1, 20, endpoint=False)])
+            rr = np.hypot(*dense.T)
+            band = (rr > t.root_radius + 0.3) & (rr < t.tip_radius - 0.3)
+            a = np.arctan2(dense[band, 1], dense[band, 0]) - rate * z
+            phi = np.mod(a + math.pi, 2 * math.pi) - math.pi
+            devs.append((np.abs(phi) - t.flank_angle(rr[band])) * t.base_radius)
+        d = np.concatenate(devs)
+        return {"flank_um": r(1000 * float(np.abs(d).max()), 1), "flank_mean_um": r(1000 * float(d.mean()), 1)}
+
+    def shells(dest: Path, man: dict, envelope) -> str:
+        ok = 0
+        for p in man["parts"]:
+            mesh = trimesh.load(dest / p["file"], file_type="stl")
+            ok += not mesh_problems(mesh, envelope) and len(mesh.split(only_watertight=False)) == 1
+        return f"{len(man['parts'])} STL, {'each' if ok == len(man['parts']) else f'{ok} of them'} one closed shell"
+
+    out: dict = {}
+    for key, cfg in (("pair", "configs/gear_train_crossed_helical.yaml"), ("worm", "configs/gear_train_worm.yaml")):
+        dest = tmp / key
+        partgen("build", cfg, "-o", str(dest))
+        man = json.loads((dest / "manifest.json").read_text())
+        d = man["design"]
+        c = partgen("check", str(dest), "-o", str(tmp / f"{key}_plates"))
+        t = partgen("trace", str(dest), "-o", str(tmp / f"{key}_trace"))
+        f = c["figures"]
+        loaded = pipeline.load(ROOT / cfg)
+        spec, kit = loaded.spec, pipeline.make_kit(loaded)
+        env = tuple(float(x) for x in kit.printer.envelope)
+        tight = dataclasses.replace(spec, gear1=gear_spec(spec.pair, 0, -0.1, spec.tol),
+                                    gear2=gear_spec(spec.pair, 1, -0.1, spec.tol))
+        vols = mesh_overlaps(build_crossed(tight), f["samples"])
+        out[key] = {
+            "centre_distance_mm": r(d["centre_distance_mm"], 3), "shaft_height_mm": r(d["shaft_height_mm"], 1),
+            "pitch1_mm": r(d["pitch_diameter_mm"][0], 1), "pitch2_mm": r(d["pitch_diameter_mm"][1], 1),
+            "face1_mm": r(d["face_width_mm"][0], 1),
+            "sliding_per_rolling": r(d["sliding_per_rolling"], 2),
+            "check_samples": f["samples"], "overlap_mm3": f["max_overlap_mm3"],
+            "tight_overlap_min_mm3": r(float(vols.min()), 2), "tight_phases_overlapping": int((vols > 0).sum()),
+            "backlash_min_mm": r(f["backlash_mm"]["min"], 3), "backlash_max_mm": r(f["backlash_mm"]["max"], 3),
+            "backlash_designed_mm": r(f["backlash_mm"]["designed"], 3),
+            "te_pp_um": r(1000 * t["transmission_error_mm"]["peak_to_peak"], 1), "trace_samples": t["samples"],
+            "te_check_pp_um": r(1000 * f["transmission_error_mm"]["peak_to_peak"], 1),
+            "ratio_measured": r(t["ratio_measured"], 6),
+            "ratio_error": f"{t['ratio_relative_error']:.0e}" if t["ratio_relative_error"] else "0",
+            "ratio_local_pct": r(100 * t["instantaneous_ratio_deviation"], 2),
+            "exits": "exit 0" if c["ok"] and t.get("ok", True) else "**not both exit 0**",
+            "check_s": r(c["seconds"], 1), "shells": shells(dest, man, env),
+            "triangles_k": r(sum(p["triangles"] for p in man["parts"] if p["name"] == "gear1") / 1000, 0),
+            "chord_mm": spec.tol,
+        }
+        if key == "pair":
+            out[key].update(helical_flanks(spec, kit))
+            fine = pipeline.load(ROOT / cfg, over=pipeline.overrides(["gears.chord_tolerance_mm=0.001"]))
+            out[key]["flank_fine_um"] = helical_flanks(fine.spec, pipeline.make_kit(fine))["flank_um"]
+        else:
+            out[key].update(thread_flanks(spec, kit))
+            # the throated wheel's scallop between two of the generating cut's 12 poses per worm tooth
+            # pitch, (p_t2 sin α_t / 12)² / (8 ρ), ρ the wheel's flank's radius of curvature at its
+            # pitch circle (r sin α_t)
+            sys2 = spec.pair.systems[1]
+            rho = spec.pair.pitch_radius(1) * math.sin(sys2.pressure_angle)
+            out[key]["scallop_um"] = r(1000 * (math.pi * sys2.module * math.sin(sys2.pressure_angle) / 12) ** 2 / (8 * rho), 2)
+            out[key].update(lead_deg=r(d["lead_angle_deg"], 2), friction_angle_deg=r(d["friction_angle_deg"], 2),
+                            friction=d["friction_coefficient"], self_locking="yes" if d["self_locking"] else "no",
+                            efficiency_pct=pct(d["efficiency_gear1_driving"], 0))
+    # the same code at 60° (30° + 30°): another frame, the same kinematic model
+    data = yaml.safe_load((ROOT / "configs" / "gear_train_crossed_helical.yaml").read_text())
+    data.update(name="crossed_60", shaft_angle_deg=60.0)
+    data["gears"]["helix_angle_deg"] = [30.0, 30.0]
+    cfg60 = tmp / "crossed_60.yaml"
+    cfg60.write_text(yaml.safe_dump(data, sort_keys=False))
+    f = partgen("check", str(cfg60), "-o", str(tmp / "s60"))["figures"]
+    out["s60"] = {"overlap_mm3": f["max_overlap_mm3"], "backlash_min_mm": r(f["backlash_mm"]["min"], 3),
+                  "backlash_max_mm": r(f["backlash_mm"]["max"], 3), "backlash_designed_mm": r(f["backlash_mm"]["designed"], 3)}
+    # the page's bevel figures the bevel section does not measure: a pitch cone reaches 90° (a crown
+    # gear) at cos Σ = −z_small / z_large; a gear's triangles at the shipped 0.001 mm chord tolerance
+    out["bevel_crown_limit_15_25_deg"] = r(math.degrees(math.acos(-15 / 25)), 2)
+    partgen("build", "configs/bevel_mitre.yaml", "-o", str(tmp / "mitre"))
+    man = json.loads((tmp / "mitre" / "manifest.json").read_text())
+    out["bevel_gear1_triangles_k"] = r(next(p["triangles"] for p in man["parts"] if p["name"] == "gear1") / 1000, 1)
+    out["bevel_chord_mm"] = yaml.safe_load((ROOT / "configs" / "bevel_mitre.yaml").read_text())["gears"]["chord_tolerance_mm"]
+    return out
+
+
 SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
             "tolerance": tolerance, "autoplay": autoplay, "sweep": sweep, "bennett": bennett,
-            "calibrate": calibrate, "wrist": wrist, "bevel": bevel, "contact": contact,
+            "calibrate": calibrate, "wrist": wrist, "bevel": bevel, "crossed": crossed, "contact": contact,
             "printers": printers, "jam": jam, "exact": exact, "play": play, "lissajous": lissajous}
 
 
