@@ -148,11 +148,30 @@ def shares(kit) -> list[Share]:
     return out
 
 
+def _sides(spec, kit) -> tuple[float, float]:
+    """The bores' share below and above the output's nominal angle (as the trace measures it: the
+    world's sense): its forward part ``Σ c_k |w_f,k|`` above when the output turns positive, below
+    otherwise (a compound gear opens the two limits unevenly)."""
+    plays = running_fits(ModelBuilder(), kit, Result())
+    fwd = back = 0.0
+    for k, (wf, wb) in body_reach(spec).items():
+        got = _body_play(plays, k)
+        if got is not None:
+            c = max(got[1].nominal, 0.0)
+            fwd += c * float(np.linalg.norm(wf))
+            back += c * float(np.linalg.norm(wb))
+    if fwd + back <= 0:
+        return 0.5, 0.5
+    f = fwd / (fwd + back)
+    return (1 - f, f) if float(spec.shafts[-1].speed) > 0 else (f, 1 - f)
+
+
 def lost_motion(spec, kit, te_drive_arcmin: np.ndarray | None = None, te_coast_arcmin: np.ndarray | None = None) -> dict:
     """The output's lost motion (arc-minutes: nominal, worst case, 95 % and median of prints at the
     printer's xy accuracy, a row per mesh and per body) and, with the measured transmission errors
     (arcmin), the band about nominal."""
-    out = cost(shares(kit), spec.printer.xy_accuracy, "arcmin", te_drive_arcmin, te_coast_arcmin)
+    out = cost(shares(kit), spec.printer.xy_accuracy, "arcmin", te_drive_arcmin, te_coast_arcmin,
+               sides=_sides(spec, kit))
     out["radial_play_mm"] = round(spec.running / 2, 6)
     out["model"] = ("first order: Σ meshes' backlash |ω_out/ω_driven|/r_w + Σ bodies' play c_k (|w_f,k| + |w_b,k|), "
                     "each body anywhere in its bore (a body in one mesh: 2c/(r_w cos α_w) of its driven gear); "
