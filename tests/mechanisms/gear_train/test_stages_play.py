@@ -27,14 +27,20 @@ def _kit(name: str, *sets: str):
     return loaded.spec, pipeline.make_kit(loaded)
 
 
-def _built(name: str):
-    spec, kit = _kit(name)
+def _built(name: str, *sets: str):
+    spec, kit = _kit(name, *sets)
     return spec, kit, printed_sections(kit), play.lost_motion(spec, kit)
 
 
 @pytest.fixture(scope="module")
 def reducer():
     return _built("gear_train_reducer")  # two spur stages: a shaft, a compound gear on its pin, a shaft
+
+
+@pytest.fixture(scope="module")
+def idler():  # the reducer's second stage an idler: the middle gear in two meshes on one layer
+    return _built("gear_train_reducer", "train.ratio=null", "train.stages=[{teeth: [20, 30]}, "
+                  "{teeth: [30, 25], idler: true, angle_deg: 70}]")
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +53,7 @@ def _out(spec, turned, key):
     return math.copysign(1.0, float(spec.shafts[-1].speed)) * turned[key][:, len(spec.shafts) - 1]
 
 
-@pytest.mark.parametrize("design", ["reducer", "herringbone"])
+@pytest.mark.parametrize("design", ["reducer", "herringbone", "idler"])
 def test_model_agrees_with_the_printed_outlines(design, request):
     """Centred, the output turns through the meshes' backlash; with every body where the model puts it
     (``worst_shifts``: one place for the forward limit, another for the backward one) through the
