@@ -71,8 +71,8 @@ def test_model_agrees_with_the_printed_outlines(design, request):
     assert exact.mean() - lm["backlash"] > 2.5 * (exact.mean() - lm["total"])  # the bores' part, not the lash's
     o = len(spec.shafts) - 1
     ends = np.stack([fwd["coast"][:, o], back["drive"][:, o]]) - plain["nominal"][:, o]
-    te_d, te_c = (plain["drive"][:, o] - plain["nominal"][:, o]) * ARCMIN, (plain["coast"][:, o] - plain["nominal"][:, o]) * ARCMIN
-    band = play.lost_motion(spec, kit, te_d, te_c)["transmission_error_band_arcmin"]
+    te = {k: (plain[k][:, o] - plain["nominal"][:, o]) * ARCMIN for k in ("drive", "coast")}
+    band = play.lost_motion(spec, kit, te["drive"], te["coast"])["transmission_error_band_arcmin"]
     assert ends.min() * ARCMIN == pytest.approx(band["low"], abs=0.01 * lm["total"])
     assert ends.max() * ARCMIN == pytest.approx(band["high"], abs=0.01 * lm["total"])
 
