@@ -389,24 +389,70 @@ def exact(tmp: Path) -> dict:
 
 
 def play(tmp: Path) -> dict:
-    """What play costs: the default chain's pen error band, the reducer's, the planetary set's and the
-    rack's lost motion, as `partgen trace --json` reports them; the planetary's and the rack's nominal
-    lost motion measured exactly on the printed outlines (each body where the model puts it in its bore)."""
+    """What play costs: the default chain's pen error band, the reducer's, the herringbone pair's, the
+    planetary set's and the rack's lost motion, as `partgen trace --json` reports them; the trains'
+    nominal lost motion measured exactly on the printed outlines (each body where the model puts it in
+    its bore)."""
     t = partgen("trace", "configs/butterfly.yaml", "-o", str(tmp / "chain"))
     b = t["pen_error_band_mm"]
     free = b["link_free_angle_arcmin"]
-    g = partgen("trace", "configs/gear_train_reducer.yaml", "-o", str(tmp / "reducer"))
-    lm = g["lost_motion_arcmin"]
     return {"chain": {"path_worst_mm": r(b["path_worst_case_max"], 1), "path_p95_mm": r(b["path_p95_max"], 1),
                       "path_p50_mm": r(b["path_p50_max"], 1), "point_worst_mm": r(b["worst_case_max"], 0),
                       "point_p95_mm": r(b["p95_max"], 0), "point_p50_mm": r(b["p50_max"], 0),
                       "free_min_arcmin": r(min(free), 0), "free_max_arcmin": r(max(free), 0),
                       "radial_play_mm": r(max(b["joint_radial_play_mm"]), 3), "prints": b["prints"]},
-            "reducer": {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
-                        "bores_arcmin": r(lm["bores"], 1), "measured_min_arcmin": r(g["backlash_arcmin"]["min"], 1),
-                        "measured_max_arcmin": r(g["backlash_arcmin"]["max"], 1),
-                        "te_band_arcmin": r(lm["transmission_error_band_arcmin"]["width"], 1)},
+            "reducer": _stages_play(tmp, "reducer"), "herringbone": _stages_play(tmp, "herringbone"),
             "planetary": _planetary_play(tmp), "rack": _rack_play(tmp)}
+
+
+def _stages_play(tmp: Path, name: str) -> dict:
+    """A train of stages: trace's lost motion at the output; the output turned on the printed outlines
+    with every body centred and with every body where the model puts it (``worst_shifts``) at 6 angles;
+    the bores' share as the model counted it before (each body's play along its lines of centres only,
+    ``2 tan α_w · 2c`` per mesh) and the compound gears' share against the sum of their meshes' parts
+    (what a compound gear tilting on its pin could reach)."""
+    import math
+
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.mechanisms.gear_train.common.play import ARCMIN
+    from partgen.mechanisms.gear_train.stages import play as splay
+    from partgen.mechanisms.gear_train.stages.motion import printed_sections, turn_train
+
+    t = partgen("trace", f"configs/gear_train_{name}.yaml", "-o", str(tmp / name))
+    lm, band = t["lost_motion_arcmin"], t["lost_motion_arcmin"]["transmission_error_band_arcmin"]
+    loaded = pipeline.load(f"configs/gear_train_{name}.yaml")
+    kit, s = pipeline.make_kit(loaded), loaded.spec
+    secs, o, sg = printed_sections(kit), len(s.shafts) - 1, math.copysign(1.0, float(s.shafts[-1].speed))
+    th = np.linspace(0.0, s.output_turn, 6, endpoint=False)
+    where = splay.worst_shifts(s)
+    fwd = turn_train(kit, th, secs, 1e-7, shifts=where["coast"])
+    back = turn_train(kit, th, secs, 1e-7, shifts=where["drive"])
+    exact = sg * (fwd["coast"][:, o] - back["drive"][:, o]) * ARCMIN
+    c, ms = s.running / 2, splay.mesh_terms(s)
+    old = sum(2 * math.tan(m["alpha_w"]) * 2 * c / m["r_w"] * m["refer"] for m in ms) * ARCMIN
+    reach = splay.body_reach(s)
+    compound = [k for k in reach if sum(k in (m["i"], m["j"]) for m in ms) > 1]
+    rows = {row["share"]: row for row in lm["shares"]}
+    bodies = sum(row["at_output"] for row in lm["shares"] if row["kind"] == "bores")
+    out = {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
+           "bores_arcmin": r(lm["bores"], 1), "worst_arcmin": r(lm["worst_case"], 1), "p95_arcmin": r(lm["p95"], 1),
+           "p50_arcmin": r(lm["p50"], 1), "prints": lm["prints"], "accuracy_mm": lm["accuracy_mm"],
+           "measured_min_arcmin": r(t["backlash_arcmin"]["min"], 1),
+           "measured_max_arcmin": r(t["backlash_arcmin"]["max"], 1),
+           "exact_min_arcmin": r(float(exact.min()), 1), "exact_max_arcmin": r(float(exact.max()), 1),
+           "along_centres_arcmin": r(old, 1), "old_total_arcmin": r(lm["backlash"] + old, 1),
+           "bores_ratio": r(lm["bores"] / old, 2), "alpha_w_deg": r(math.degrees(ms[-1]["alpha_w"]), 1),
+           "te_band_arcmin": r(band["width"], 1), "te_band_p95_arcmin": r(band["p95_width"], 1),
+           "te_band_worst_arcmin": r(band["worst_case_width"], 1),
+           "bodies": ", ".join(f"{k.split(' ')[0]} {v['at_output']:.1f}" for k, v in rows.items() if v["kind"] == "bores")}
+    assert abs(bodies - lm["bores"]) < 0.01
+    for k in compound:  # its meshes' parts added as numbers: each 2c refer/r_b
+        parts = sum(2 * c * m["refer"] / m["r_b"] for m in ms if k in (m["i"], m["j"])) * ARCMIN
+        got = next(v["at_output"] for n, v in rows.items() if n.split(" ")[0] in (f"gears{k}", f"shaft{k}"))
+        out.update(compound_arcmin=r(got, 1), compound_sum_arcmin=r(parts, 1))
+    return out
 
 
 def _planetary_play(tmp: Path) -> dict:

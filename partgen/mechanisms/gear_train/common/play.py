@@ -17,7 +17,8 @@ distributions (``design.tolerance``: a gear's outline, a bore, a pin, a feature'
   distributions (seed 0), each share clipped at 0, the 95th percentile of their lost motion;
 * **transmission-error band**: the drive- and coast-flank transmission error measured on the printed
   outlines (every body centred in its bore) widened on each side by half the bores' share (the play
-  lets the output sit anywhere between); for the worst-case print and the 95 % print widened further
+  lets the output sit anywhere between; a sub-slice whose play opens its output's two limits unevenly
+  — the stages' compound gears — gives the split); for the worst-case print and the 95 % print widened further
   by half the lost motion's excess over nominal on each side (a print's extra backlash and play open
   both flanks alike).
 """
@@ -51,12 +52,16 @@ class Share:
     terms: dict = field(default_factory=dict)
 
 
-def te_band(te_drive: np.ndarray, te_coast: np.ndarray, bores: float, extra: dict | None = None) -> dict:
+def te_band(te_drive: np.ndarray, te_coast: np.ndarray, bores: float, extra: dict | None = None,
+            sides: tuple[float, float] = (0.5, 0.5)) -> dict:
     """The transmission-error band (the output's place about its nominal, in the unit of the transmission
-    errors): the measured drive- and coast-flank errors widened by half the ``bores`` share on each
-    side; ``extra``: {name: lost motion beyond nominal} -> that band's width, widened by it."""
-    lo = float(np.min(te_drive)) - bores / 2
-    hi = float(np.max(te_coast)) + bores / 2
+    errors): from the least to the most of the measured drive- and coast-flank errors (either may be the
+    lower: an output turning negative lags upwards), widened by ``sides`` (low, high) of the ``bores``
+    share (half each unless a sub-slice's model splits it otherwise); ``extra``: {name: lost motion
+    beyond nominal} -> that band's width, widened by it."""
+    both = np.concatenate([np.ravel(te_drive), np.ravel(te_coast)])
+    lo = float(np.min(both)) - bores * sides[0]
+    hi = float(np.max(both)) + bores * sides[1]
     out = {"low": round(lo, 4), "high": round(hi, 4), "width": round(hi - lo, 4)}
     for k, v in (extra or {}).items():
         out[f"{k}_width"] = round(hi - lo + max(v, 0.0), 4)
@@ -64,11 +69,11 @@ def te_band(te_drive: np.ndarray, te_coast: np.ndarray, bores: float, extra: dic
 
 
 def lost_motion(shares: list[Share], accuracy_mm: float, unit: str, te_drive=None, te_coast=None,
-                prints: int = PRINTS, seed: int = 0) -> dict:
+                prints: int = PRINTS, seed: int = 0, sides: tuple[float, float] = (0.5, 0.5)) -> dict:
     """The lost motion of ``shares`` (in their gains' unit): nominal (``total``, its ``backlash`` and
     ``bores`` parts), ``worst_case``, ``p95`` and ``p50`` over prints at ± ``accuracy_mm``, a row per
     label; with the measured transmission errors (same unit), the band about nominal
-    (``transmission_error_band_<unit>``)."""
+    (``transmission_error_band_<unit>``; ``sides``: the bores' share below and above, ``te_band``)."""
     b = ModelBuilder()
     for s in shares:
         b.add(Margin(s.name, "mesh" if s.kind == "backlash" else "joint", s.kind, float(s.mm)), s.terms)
@@ -97,5 +102,5 @@ def lost_motion(shares: list[Share], accuracy_mm: float, unit: str, te_drive=Non
            "accuracy_mm": float(accuracy_mm), "shares": list(rows.values())}
     if te_drive is not None and te_coast is not None:
         out[f"transmission_error_band_{unit}"] = te_band(te_drive, te_coast, bores,
-                                                 {"worst_case": worst - nominal, "p95": p95 - nominal})
+                                                 {"worst_case": worst - nominal, "p95": p95 - nominal}, sides)
     return out

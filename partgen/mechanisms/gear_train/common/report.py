@@ -13,7 +13,7 @@ def lost_motion_html(lm: dict, unit: str = "arcmin", output: str = "the output",
     """The report's "What play costs" of a train (``common/play.py``, ``stages/play.py``): the lost motion at
     ``output`` (in ``unit``, "arcmin" or "mm") from each mesh's backlash and the bores' play, over prints
     when the figures have them, the transmission-error band, and a table of where it comes from (a row
-    per mesh, the stages'; or per share); ``note``: a sentence after the headline."""
+    per share: each mesh's backlash, each body's play); ``note``: a sentence after the headline."""
     from ....export import report as R
 
     u, f = UNITS[unit]
@@ -21,10 +21,8 @@ def lost_motion_html(lm: dict, unit: str = "arcmin", output: str = "the output",
     band = lm.get(f"transmission_error_band_{unit}")
     html = (f"<p>Lost motion at {output} (the input held, how far {output} moves freely): "
             f"<b>{v(lm['total'])} {u}</b> — each mesh's backlash {v(lm['backlash'])} {u} and the bores' "
-            f"play {v(lm['bores'])} {u} (running clearance {2 * lm['radial_play_mm']:g} mm diametral"
-            + (", taken up along each mesh's line of centres), referred to the output through the shafts' speeds "
-               "(docs/tolerance.md, What play costs)." if "meshes" in lm else "; docs/tolerance.md, What play costs).")
-            + f"{(' ' + note) if note else ''}</p>")
+            f"play {v(lm['bores'])} {u} (running clearance {2 * lm['radial_play_mm']:g} mm diametral; "
+            f"docs/tolerance.md, What play costs).{(' ' + note) if note else ''}</p>")
     if "worst_case" in lm:
         html += (f"<p>Over prints at the printer's ±{lm['accuracy_mm']:g} mm (the tolerance model's features, "
                  f"{lm['prints']:,} prints): worst case <b>{v(lm['worst_case'])} {u}</b> (every feature at its limit, "
@@ -33,14 +31,10 @@ def lost_motion_html(lm: dict, unit: str = "arcmin", output: str = "the output",
     if band:
         html += (f"<p>Transmission-error band: {output} stays within {v(band['low'])} … {v(band['high'])} {u} of "
                  f"its nominal place (width {v(band['width'])} {u}): the measured drive- and coast-flank transmission "
-                 "error of the printed outlines, widened on each side by half the bores' share"
+                 "error of the printed outlines, widened by the bores' share, split between its two sides as the play "
+                 "opens each limit"
                  + (f"; {v(band['p95_width'])} {u} wide for 95 % of prints, {v(band['worst_case_width'])} {u} at worst"
                     if "p95_width" in band else "") + ".</p>")
-    if "meshes" in lm:
-        rows = [[m["mesh"], f"{m['backlash_mm']:.3f}", f"{m['backlash_arcmin']:.2f}", f"{m['bores_arcmin']:.2f}"]
-                for m in lm["meshes"]]
-        return html + R.table(["mesh", "backlash mm", "backlash at the output arcmin", "bores at the output arcmin"],
-                              rows, left=1)
     rows = [[r["share"] + (f" (×{r['count']})" if r["count"] > 1 else ""),
              "backlash" if r["kind"] == "backlash" else "radial play", f"{r['mm']:.3f}", v(r["at_output"])]
             for r in lm.get("shares", [])]

@@ -16,8 +16,13 @@ __all__ = ["report_sections", "subtitle", "bill_text", "lost_motion_html"]
 
 def lost_motion_html(lm: dict, spec) -> str:
     """The report's "What play costs" of a train: the output's lost motion (arc-minutes) from each
-    mesh's backlash and the bores' play, and the transmission-error band (play.lost_motion)."""
-    return common.lost_motion_html(lm)
+    mesh's backlash and each body's play in its bore, over prints, and the transmission-error band
+    (play.lost_motion)."""
+    return common.lost_motion_html(
+        lm, "arcmin", "the output", "The input held, each mesh lets its driven gear turn through its backlash, "
+        "referred to the output through the shafts' speeds; each body may sit anywhere in its bore, and one "
+        "place opens the forward limit, another the backward one: a gear in one mesh adds twice its radial play "
+        "over its driven gear's base radius.")
 
 
 def report_sections(spec: TrainSpec, kit: TrainKit, result: Result, trace: Trace, files: dict
