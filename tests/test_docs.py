@@ -93,6 +93,16 @@ def test_readme_starts_with_the_two_commands_and_the_second_is_ci():
     assert tests == ci.strip()
 
 
+def test_the_readmes_figure_is_the_benchmarks():
+    """The README states the quick start's P(jam) by hand (it is not built): it must be the figure
+    benchmarks/docs_figures.py last wrote (its `jam` section)."""
+    import json
+    stated = re.search(r"partgen estimates that ([0-9.]+) % of prints on the Ender-3 V3 jam", README.read_text())
+    assert stated, "the README's quick start states its P(jam)"
+    got = json.loads((ROOT / "docs" / "figures.json").read_text())["jam"]["desktop"]["ender3_v3"]["pct"]
+    assert float(stated[1]) == got, (stated[1], got)
+
+
 def test_the_docs_speak_to_a_user():
     for page in (ROOT / "docs").rglob("*.md"):
         text = page.read_text()

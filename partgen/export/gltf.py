@@ -43,6 +43,7 @@ import trimesh
 
 from ..core.parts import Part
 from ..core.protocol import Kit, Motion
+from ..design.graph import components
 
 __all__ = ["MAX_ERROR_MM", "MIN_KEYS", "MAX_KEYS", "CREASE_DEG", "Instance", "assembly_glb", "read_glb",
            "role_palette", "Sampling", "sample_motion", "motion_of"]
@@ -243,14 +244,43 @@ class _Bin:
         return len(self.accessors) - 1
 
 
-def _shaded(mesh: trimesh.Trimesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def creased_normals(vertices: np.ndarray, faces: np.ndarray, crease_deg: float = CREASE_DEG
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split normals at the creases: faces joined across an edge whose normals differ by less than
+    ``crease_deg`` form one smooth patch (connected components over such edges, as
+    ``trimesh.graph.smooth_shade`` makes them, in numpy: ``design.graph.components``); each vertex
+    gets one copy per patch round it, with the corner-angle weighted mean of that patch's face
+    normals there. Returns vertices (n', 3) mm, unit normals (n', 3) and faces (m, 3) int64, for an
+    edge-manifold mesh (vertices (n, 3), faces (m, 3))."""
+    v = np.asarray(vertices, dtype=np.float64)
+    f = np.asarray(faces, dtype=np.int64)
+    m, nv = len(f), len(v)
+    tri = v[f]
+    fu = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    fu /= np.maximum(np.linalg.norm(fu, axis=1, keepdims=True), 1e-300)
+    out_edge, in_edge = tri[:, [1, 2, 0]] - tri, tri[:, [2, 0, 1]] - tri  # the two edges at each corner
+    cos_corner = np.einsum("ijk,ijk->ij", out_edge, in_edge) / np.maximum(
+        np.linalg.norm(out_edge, axis=2) * np.linalg.norm(in_edge, axis=2), 1e-300)
+    corner_angle = np.arccos(np.clip(cos_corner, -1.0, 1.0)).reshape(-1)
+    a, b = f.reshape(-1), f[:, [1, 2, 0]].reshape(-1)
+    face_of = np.repeat(np.arange(m), 3)
+    key = np.minimum(a, b) * nv + np.maximum(a, b)
+    order = np.argsort(key, kind="stable")
+    shared = np.flatnonzero(key[order][1:] == key[order][:-1])  # an edge's two faces sit side by side
+    f1, f2 = face_of[order[shared]], face_of[order[shared + 1]]
+    smooth = np.einsum("ij,ij->i", fu[f1], fu[f2]) >= math.cos(math.radians(crease_deg))
+    patch = components(m, f1[smooth], f2[smooth])
+    uniq, corner_vertex = np.unique(patch[face_of] * nv + a, return_inverse=True)
+    w = fu[face_of] * corner_angle[:, None]
+    nrm = np.stack([np.bincount(corner_vertex, weights=w[:, i], minlength=len(uniq)) for i in range(3)], axis=1)
+    nrm /= np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-300)
+    return v[uniq % nv], nrm, corner_vertex.reshape(m, 3)
+
+
+def _shaded(mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Vertices, normals and triangles with split normals at the creases (float32, uint)."""
-    sm = trimesh.graph.smooth_shade(mesh, angle=math.radians(CREASE_DEG))
-    v = np.asarray(sm.vertices, dtype=np.float32)
-    nrm = np.array(sm.vertex_normals, dtype=np.float64)
-    nrm /= np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-12)
-    f = np.asarray(sm.faces)
-    return v, nrm.astype(np.float32), f.astype(np.uint16 if len(v) < 65535 else np.uint32)
+    v, nrm, f = creased_normals(mesh.vertices, mesh.faces)
+    return v.astype(np.float32), nrm.astype(np.float32), f.astype(np.uint16 if len(v) < 65535 else np.uint32)
 
 
 def _trs(m: np.ndarray) -> tuple[list[float], list[float]]:

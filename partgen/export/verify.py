@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..design.graph import components
+
 __all__ = ["MeshReport", "read_stl", "mesh_report"]
 
 _RECORD = np.dtype([("normal", "<f4", (3,)), ("v", "<f4", (3, 3)), ("attr", "<u2")])
@@ -80,23 +82,6 @@ def read_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     return corners[order[new]], ids.reshape(-1, 3)
 
 
-def _components(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Component label (the smallest node) of each of n nodes joined by the pairs (a[i], b[i]):
-    union-find by hooking roots onto smaller roots, then compressing, until no pair spans two."""
-    parent = np.arange(n)
-    while True:
-        pa, pb = parent[a], parent[b]
-        split = pa != pb
-        if not split.any():
-            return parent
-        np.minimum.at(parent, np.maximum(pa, pb)[split], np.minimum(pa, pb)[split])
-        while True:
-            pp = parent[parent]
-            if np.array_equal(pp, parent):
-                break
-            parent = pp
-
-
 def mesh_report(verts: np.ndarray, faces: np.ndarray) -> MeshReport:
     """Count what makes a mesh (verts (n, 3) mm, faces (m, 3) int) other than one closed,
     oriented 2-manifold shell."""
@@ -130,7 +115,7 @@ def mesh_report(verts: np.ndarray, faces: np.ndarray) -> MeshReport:
     # shells: faces joined across shared edges (bodies touching along an edge count as one here,
     # and are caught as non-manifold edges)
     same = ks[1:] == ks[:-1]
-    shells_lbl = _components(m, face_of[order[:-1][same]], face_of[order[1:][same]])
+    shells_lbl = components(m, face_of[order[:-1][same]], face_of[order[1:][same]])
     shells = len(np.unique(shells_lbl))
 
     # pinched vertices: corners (face, vertex) joined across each two-face edge at both of its ends;
@@ -144,7 +129,7 @@ def mesh_report(verts: np.ndarray, faces: np.ndarray) -> MeshReport:
         ends.append((c1, c2))
     ca = np.concatenate([e[0] for e in ends])
     cb = np.concatenate([e[1] for e in ends])
-    lbl = _components(3 * m, ca, cb)
+    lbl = components(3 * m, ca, cb)
     fans = np.unique(faces.reshape(-1) * np.int64(3 * m) + lbl) // (3 * m)
     per_vertex = np.bincount(fans, minlength=len(v))
     pinched = int(np.sum(per_vertex > 1))

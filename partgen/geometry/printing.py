@@ -20,6 +20,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon
 
+from ..design.graph import components
 from .solid import mesh_arrays
 
 __all__ = ["face_areas", "rotation_between", "overhang_area", "bed_contact_area", "shells", "Orientation",
@@ -95,31 +96,12 @@ def footprint(vertices: np.ndarray, faces: np.ndarray, down=(0.0, 0.0, -1.0)):
     return shapely.union_all([t for t in tris if t.area > 0]) if tris else Polygon()
 
 
-def _components(edges: np.ndarray, n: int) -> np.ndarray:
-    """(n,) a component label per node of a graph given by its edges (k, 2): hook every edge's two
-    roots to the smaller, then jump pointers to the roots, until nothing changes."""
-    label = np.arange(n)
-    a, b = edges[:, 0], edges[:, 1]
-    while True:
-        la, lb = label[a], label[b]
-        if np.array_equal(la, lb):
-            return label
-        low = np.minimum(la, lb)
-        np.minimum.at(label, la, low)
-        np.minimum.at(label, lb, low)
-        while True:
-            up = label[label]
-            if np.array_equal(up, label):
-                break
-            label = up
-
-
 def shells(vertices: np.ndarray, faces: np.ndarray) -> list[float]:
     """Signed volume (mm³) of each shell (faces connected through shared vertices), largest first.
     A solid part has one positive shell; a negative one is a sealed void inside it."""
     f = np.asarray(faces, np.int64)
     v = np.asarray(vertices, float)
-    label = _components(np.concatenate([f[:, [0, 1]], f[:, [1, 2]]]), len(v))
+    label = components(len(v), np.concatenate([f[:, 0], f[:, 1]]), np.concatenate([f[:, 1], f[:, 2]]))
     _, shell = np.unique(label[f[:, 0]], return_inverse=True)
     a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
     vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6

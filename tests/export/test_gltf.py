@@ -283,3 +283,37 @@ def test_khronos_validator_finds_no_error(name, kit_of):
     report = json.loads(r.stdout.splitlines()[-1])
     assert r.returncode == 0 and report["errors"] == 0, report
     assert report["warnings"] == 0, report
+
+
+def test_creased_normals_split_at_the_edges_and_smooth_the_curves():
+    """A box: 24 vertices, each normal its face's axis. A 64-sided prism (a faceted cylinder, 11.25°
+    between sides, under the crease angle): each top or bottom ring vertex has two copies, one on
+    its cap (±z) and one on the side, whose normal is radial; the patches are the ones
+    trimesh.graph.smooth_shade makes (the same vertex count) on a gear."""
+    import trimesh
+
+    box = manifold3d.Manifold.cube([2.0, 3.0, 4.0]).to_mesh()
+    v, n, f = gltf.creased_normals(box.vert_properties[:, :3], box.tri_verts)
+    assert len(v) == 24
+    assert np.allclose(np.abs(n).max(axis=1), 1.0) and np.allclose(np.abs(n).sum(axis=1), 1.0)
+    r, h, sides = 5.0, 2.0, 64
+    cyl = manifold3d.Manifold.cylinder(h, r, r, sides).to_mesh()
+    v, n, f = gltf.creased_normals(cyl.vert_properties[:, :3], cyl.tri_verts)
+    ring = np.isclose(np.hypot(v[:, 0], v[:, 1]), r)
+    cap = np.isclose(np.abs(n[:, 2]), 1.0)
+    side = ring & ~cap
+    assert side.sum() == 2 * sides and (ring & cap).sum() == 2 * sides
+    radial = v[side, :2] / r
+    assert np.allclose(n[side, 2], 0.0, atol=1e-12) and np.allclose(n[side, :2], radial, atol=1e-9)
+    assert np.allclose(np.linalg.norm(n, axis=1), 1.0)
+    # every face's corners keep its winding and its own side
+    tri = v[f]
+    face = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    assert (np.einsum("ij,ij->i", face, n[f[:, 0]]) > 0).all()
+    from partgen.design import involute
+    pts = np.asarray(involute.gear_outline(23, 2.0, math.radians(20)).points)[:, :2]
+    gear = manifold3d.Manifold.extrude(manifold3d.CrossSection([pts]) - manifold3d.CrossSection.circle(5.0, 64), 6.0).to_mesh()
+    gv, gf = gear.vert_properties[:, :3], gear.tri_verts
+    v, n, f = gltf.creased_normals(gv, gf)
+    ref = trimesh.graph.smooth_shade(trimesh.Trimesh(gv, gf, process=False), angle=math.radians(gltf.CREASE_DEG))
+    assert len(v) == len(ref.vertices)
