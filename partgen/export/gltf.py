@@ -116,11 +116,10 @@ def _quat(r: np.ndarray) -> np.ndarray:
 
 def _continuous(q: np.ndarray) -> np.ndarray:
     """Flip signs so each quaternion is on the side of the one before (slerp takes the short way)."""
-    q = q.copy()
-    for i in range(1, len(q)):
-        if np.dot(q[i], q[i - 1]) < 0:
-            q[i] = -q[i]
-    return q
+    if len(q) < 2:
+        return q.copy()
+    step = np.where(np.einsum("ij,ij->i", q[1:], q[:-1]) < 0, -1.0, 1.0)  # each key against the one before, as given
+    return q * np.r_[1.0, np.cumprod(step)][:, None]  # a flip carries on to every key after it
 
 
 def _rot_angle(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -180,9 +180,14 @@ def least_support_flip(solid: m3d.Manifold, angle_deg: float = 45.0, min_contact
     ``min_contact_mm2`` of flat contact are left out while the other has that much; ties: the
     larger contact, then as made."""
     v, f = mesh_arrays(solid)
+    v, f = np.asarray(v, float), np.asarray(f, np.int64)
+    area, n = face_areas(v, f)  # once for both sides (overhang_area's and bed_contact_area's sums, as they make them)
     cands = []
     for flip, down in ((False, (0.0, 0.0, -1.0)), (True, (0.0, 0.0, 1.0))):
-        cands.append((round(overhang_area(v, f, down, angle_deg), 1), -round(bed_contact_area(v, f, down), 1), flip))
+        d = np.asarray(down, float) / np.linalg.norm(down)
+        bed = _on_bed(v, f, n, d)
+        steep = n @ d > math.sin(math.radians(angle_deg))
+        cands.append((round(float(area[steep & ~bed].sum()), 1), -round(float(area[bed].sum()), 1), flip))
     ok = [c for c in cands if -c[1] >= min_contact_mm2] or cands
     return min(ok)[2]
 
