@@ -16,12 +16,13 @@ import numpy as np
 
 from ...checks.contact3d import contact_angles as _contact_angles, measured_ratio as _measured_ratio
 from ...checks.contact3d import overlaps_over_pitch
-from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern
+from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern, pattern_finding
 from ...geometry.helical import cylinder_along
+from ..solid_pair import SolidPair
 from .kit import CrossedKit
 from .resolve import CrossedSpec, is_worm
 
-__all__ = ["mesh_overlaps", "designed_backlash", "contact_angles", "measured_ratio", "contact_along_face"]
+__all__ = ["mesh_overlaps", "designed_backlash", "contact_angles", "measured_ratio", "contact_along_face", "PAIR"]
 
 
 def _near_mesh(kit: CrossedKit, theta: float):
@@ -99,3 +100,26 @@ def contact_along_face(kit: CrossedKit, thetas, play: dict) -> dict:
     p2, p1 = contact_pattern(lambda t: _near_mesh(kit, t), thetas, play["ahead"], play["overlap_mm3"],
                              CONTACT_GAP_MM / s.pair.pitch_radius(1), faces, reach)
     return {"gap_mm": CONTACT_GAP_MM, "gap_along": "gear 2's pitch circle", "gear2": p2, "gear1": p1}
+
+
+def _point_contact(spec: CrossedSpec) -> str:
+    """What a short contact pattern means here (the finding's hint)."""
+    if spec.throated:
+        return "a throated wheel should bear across its face: its cut or the poses are off"
+    if is_worm(spec.pair):
+        return ("a plain helical wheel touches the worm at a point, which crosses little of the wheel's face "
+                "over a turn (a throated wheel wraps round the worm)")
+    return "crossed helical gears touch at a point: their path of contact crosses only part of the face"
+
+
+def _contact_finding(spec: CrossedSpec, contact: dict):
+    """The contact along gear 2's face judged (``checks.contact_pattern.pattern_finding``)."""
+    return pattern_finding(contact["gear2"], ("gear1", "gear2"), "gears.face_width_mm[1]", hint=_point_contact(spec))
+
+
+PAIR = SolidPair(contact_angles, measured_ratio, contact_along_face, lambda spec: spec.pair.pitch_radius(1),
+                 designed_backlash, "gear 2's pitch circle", lambda contact: [contact["gear2"], contact["gear1"]],
+                 _contact_finding, lambda spec: {"centre_distance_mm": round(spec.centre_distance, 6)})
+"""The pair as the shared check and trace see it (``mechanisms.solid_pair``): play measured along
+gear 2's reference pitch circle, two contact patterns (along gear 2's face, the one judged, and
+gear 1's), and the centre distance among the check's figures."""

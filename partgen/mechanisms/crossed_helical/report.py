@@ -3,12 +3,12 @@ check), its subtitle and the assembly steps."""
 
 from __future__ import annotations
 
-import html
 import math
 
-from ...checks.contact_pattern import pattern_text
 from ...core.findings import Result
 from ...core.protocol import Trace
+from .. import solid_pair
+from .contact import PAIR
 from .kit import CrossedKit, design_numbers, locking_text
 from .resolve import CrossedSpec, is_worm
 
@@ -45,13 +45,7 @@ def report_sections(spec: CrossedSpec, kit: CrossedKit, result: Result, trace: T
            f"{d['centre_distance_mm']:.3f} mm apart; ratio {d['ratio']}; both right hand. Sliding at the pitch "
            f"point {d['sliding_per_rolling']:.3f} mm per mm of gear 1's pitch circle. "
            f"{locking_text(spec).capitalize()}.</p>")
-    f, s = result.figures, trace.stats
-    check = (f'<p class="{"ok" if result.ok else "fail"}">{f["samples"]} phases over a tooth pitch, exact 3-D: '
-             f'largest overlap {f["max_overlap_mm3"]:.6f} mm³, backlash {f["backlash_mm"]["min"]:.3f}–'
-             f'{f["backlash_mm"]["max"]:.3f} mm; ratio measured {s["ratio_measured"]:.9f} '
-             f'(relative error {s["ratio_relative_error"]:.1e}).</p>'
-             + "".join(f'<p>{html.escape(pattern_text(f["contact_along_face"][g]).capitalize())}.</p>'
-                       for g in ("gear2", "gear1")))
+    check = solid_pair.check_html(PAIR, result, trace)
     return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")),
             ("Check", check)]
 

@@ -8,6 +8,7 @@ from typing import Annotated, Literal
 from pydantic import Field, model_validator
 
 from ...config.schema import DesignHeader, Gap, Length, Strict
+from ..solid_pair import PairFrame
 
 __all__ = ["CrossedHelicalDesign"]
 
@@ -57,17 +58,8 @@ class CrossedShafts(Strict):
     the printer profile's measured press fit."""
 
 
-class CrossedFrame(Strict):
-    base_thickness_mm: Length = 5.0
-    """Thickness of the base plate carrying gear 1's post and the blocks."""
-    margin_mm: Length = 4.0
-    """How far the base reaches beyond gear 1's tip circle and the blocks."""
-    axial_gap_mm: Length = 0.5
-    """Gap between a gear and the base or a block (also gear 2's tip circle above the base)."""
-    block_wall_mm: Length = 4.0
-    """Material round gear 2's pin in each of its two blocks."""
-    block_thickness_mm: Length = 8.0
-    """Thickness of each block, along gear 2's axis."""
+class CrossedFrame(PairFrame):
+    """The shared frame (``mechanisms.solid_pair.PairFrame``): gear 2's pin held by two blocks."""
 
 
 class CrossedChecks(Strict):
