@@ -185,7 +185,12 @@ def sweep(tmp: Path) -> dict:
 
 
 def bennett(tmp: Path) -> dict:
-    """The Bennett butterfly's balance, clearance, stance and pins, from its check."""
+    """The Bennett butterfly's balance, clearance, stance and pins, from its check; the pins' clearance
+    auto chooses (mechanisms.autoplay, role running)."""
+    key = "pin.clearance_diametral_mm"
+    a = partgen("build", "configs/bennett_butterfly.yaml", "--set", f"{key}=auto", "-o", str(tmp / "auto"))["auto_play"]
+    auto = {"value_mm": a["values"][key], "p_pct": r(100 * a["probability"]), "buys": a["buys"].get(key, 0),
+            "samples": f"{a['samples']:,}", "fits": a["joints"]}
     f = partgen("check", "configs/bennett_butterfly.yaml", "-o", str(tmp / "kit"), "--no-plates")["figures"]
     b, base = f["balance_mm"], f["base"]
     short = [v for k, v in b.items() if k.startswith("one_slug_short")]
@@ -201,7 +206,7 @@ def bennett(tmp: Path) -> dict:
         "com_height_mm": r(base["com_height_mm"], 0), "links_above_table_mm": r(base["links_above_table_mm"], 0),
         "total_g": r(base["total_g"], 0),
         "pins": ", ".join(f"{n} × {float(length):g}" for length, n in pins),
-        "pin_count": sum(n for _, n in pins),
+        "pin_count": sum(n for _, n in pins), "auto": auto,
     }
 
 
@@ -384,22 +389,126 @@ def exact(tmp: Path) -> dict:
 
 
 def play(tmp: Path) -> dict:
-    """What play costs: the default chain's pen error band and the reducer's lost motion, as
-    `partgen trace --json` reports them."""
+    """What play costs: the default chain's pen error band, the reducer's, the herringbone pair's, the
+    planetary set's and the rack's lost motion, as `partgen trace --json` reports them; the trains'
+    nominal lost motion measured exactly on the printed outlines (each body where the model puts it in
+    its bore)."""
     t = partgen("trace", "configs/butterfly.yaml", "-o", str(tmp / "chain"))
     b = t["pen_error_band_mm"]
     free = b["link_free_angle_arcmin"]
-    g = partgen("trace", "configs/gear_train_reducer.yaml", "-o", str(tmp / "reducer"))
-    lm = g["lost_motion_arcmin"]
     return {"chain": {"path_worst_mm": r(b["path_worst_case_max"], 1), "path_p95_mm": r(b["path_p95_max"], 1),
                       "path_p50_mm": r(b["path_p50_max"], 1), "point_worst_mm": r(b["worst_case_max"], 0),
                       "point_p95_mm": r(b["p95_max"], 0), "point_p50_mm": r(b["p50_max"], 0),
                       "free_min_arcmin": r(min(free), 0), "free_max_arcmin": r(max(free), 0),
                       "radial_play_mm": r(max(b["joint_radial_play_mm"]), 3), "prints": b["prints"]},
-            "reducer": {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
-                        "bores_arcmin": r(lm["bores"], 1), "measured_min_arcmin": r(g["backlash_arcmin"]["min"], 1),
-                        "measured_max_arcmin": r(g["backlash_arcmin"]["max"], 1),
-                        "te_band_arcmin": r(lm["transmission_error_band_arcmin"]["width"], 1)}}
+            "reducer": _stages_play(tmp, "reducer"), "herringbone": _stages_play(tmp, "herringbone"),
+            "planetary": _planetary_play(tmp), "rack": _rack_play(tmp)}
+
+
+def _stages_play(tmp: Path, name: str) -> dict:
+    """A train of stages: trace's lost motion at the output; the output turned on the printed outlines
+    with every body centred and with every body where the model puts it (``worst_shifts``) at 6 angles;
+    the bores' share as the model counted it before (each body's play along its lines of centres only,
+    ``2 tan α_w · 2c`` per mesh) and the compound gears' share against the sum of their meshes' parts
+    (what a compound gear tilting on its pin could reach)."""
+    import math
+
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.mechanisms.gear_train.common.play import ARCMIN
+    from partgen.mechanisms.gear_train.stages import play as splay
+    from partgen.mechanisms.gear_train.stages.motion import printed_sections, turn_train
+
+    t = partgen("trace", f"configs/gear_train_{name}.yaml", "-o", str(tmp / name))
+    lm, band = t["lost_motion_arcmin"], t["lost_motion_arcmin"]["transmission_error_band_arcmin"]
+    loaded = pipeline.load(f"configs/gear_train_{name}.yaml")
+    kit, s = pipeline.make_kit(loaded), loaded.spec
+    secs, o, sg = printed_sections(kit), len(s.shafts) - 1, math.copysign(1.0, float(s.shafts[-1].speed))
+    th = np.linspace(0.0, s.output_turn, 6, endpoint=False)
+    where = splay.worst_shifts(s)
+    fwd = turn_train(kit, th, secs, 1e-7, shifts=where["coast"])
+    back = turn_train(kit, th, secs, 1e-7, shifts=where["drive"])
+    exact = sg * (fwd["coast"][:, o] - back["drive"][:, o]) * ARCMIN
+    c, ms = s.running / 2, splay.mesh_terms(s)
+    old = sum(2 * math.tan(m["alpha_w"]) * 2 * c / m["r_w"] * m["refer"] for m in ms) * ARCMIN
+    reach = splay.body_reach(s)
+    compound = [k for k in reach if sum(k in (m["i"], m["j"]) for m in ms) > 1]
+    rows = {row["share"]: row for row in lm["shares"]}
+    bodies = sum(row["at_output"] for row in lm["shares"] if row["kind"] == "bores")
+    out = {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
+           "bores_arcmin": r(lm["bores"], 1), "worst_arcmin": r(lm["worst_case"], 1), "p95_arcmin": r(lm["p95"], 1),
+           "p50_arcmin": r(lm["p50"], 1), "prints": lm["prints"], "accuracy_mm": lm["accuracy_mm"],
+           "measured_min_arcmin": r(t["backlash_arcmin"]["min"], 1),
+           "measured_max_arcmin": r(t["backlash_arcmin"]["max"], 1),
+           "exact_min_arcmin": r(float(exact.min()), 1), "exact_max_arcmin": r(float(exact.max()), 1),
+           "along_centres_arcmin": r(old, 1), "old_total_arcmin": r(lm["backlash"] + old, 1),
+           "bores_ratio": r(lm["bores"] / old, 2), "alpha_w_deg": r(math.degrees(ms[-1]["alpha_w"]), 1),
+           "te_band_arcmin": r(band["width"], 1), "te_band_p95_arcmin": r(band["p95_width"], 1),
+           "te_band_worst_arcmin": r(band["worst_case_width"], 1),
+           "bodies": ", ".join(f"{k.split(' ')[0]} {v['at_output']:.1f}" for k, v in rows.items() if v["kind"] == "bores")}
+    assert abs(bodies - lm["bores"]) < 0.01
+    for k in compound:  # its meshes' parts added as numbers: each 2c refer/r_b
+        parts = sum(2 * c * m["refer"] / m["r_b"] for m in ms if k in (m["i"], m["j"])) * ARCMIN
+        got = next(v["at_output"] for n, v in rows.items() if n.split(" ")[0] in (f"gears{k}", f"shaft{k}"))
+        out.update(compound_arcmin=r(got, 1), compound_sum_arcmin=r(parts, 1))
+    return out
+
+
+def _planetary_play(tmp: Path) -> dict:
+    import math
+
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.mechanisms.gear_train.common.play import ARCMIN
+    from partgen.mechanisms.gear_train.planetary.motion import turn_planetary
+
+    t = partgen("trace", "configs/gear_train_planetary.yaml", "-o", str(tmp / "planetary"))
+    lm, band = t["lost_motion_arcmin"], t["lost_motion_arcmin"]["transmission_error_band_arcmin"]
+    loaded = pipeline.load("configs/gear_train_planetary.yaml")
+    kit, c = pipeline.make_kit(loaded), loaded.spec.running / 2
+    th = np.linspace(0.0, 2 * math.pi, 6, endpoint=False)
+    fwd, back = (turn_planetary(kit, th, planet_shift=(0.0, sg * c)) for sg in (1.0, -1.0))
+    exact = (np.maximum(fwd["coast"], back["coast"]) - np.minimum(fwd["drive"], back["drive"])) * ARCMIN
+    rows = {row["share"]: row for row in lm["shares"]}
+    return {"total_arcmin": r(lm["total"], 1), "backlash_arcmin": r(lm["backlash"], 1),
+            "pins_arcmin": r(rows["a planet on its pin"]["at_output"], 1), "worst_arcmin": r(lm["worst_case"], 1),
+            "p95_arcmin": r(lm["p95"], 1), "p50_arcmin": r(lm["p50"], 1), "prints": lm["prints"],
+            "measured_min_arcmin": r(t["backlash_arcmin"]["min"], 1),
+            "measured_max_arcmin": r(t["backlash_arcmin"]["max"], 1),
+            "exact_min_arcmin": r(float(exact.min()), 1), "exact_max_arcmin": r(float(exact.max()), 1),
+            "te_band_arcmin": r(band["width"], 1), "te_band_p95_arcmin": r(band["p95_width"], 1),
+            "te_band_worst_arcmin": r(band["worst_case_width"], 1), "accuracy_mm": lm["accuracy_mm"]}
+
+
+def _rack_play(tmp: Path) -> dict:
+    import math
+
+    import numpy as np
+
+    from partgen import pipeline
+    from partgen.mechanisms.gear_train.rack.motion import turn_rack
+
+    t = partgen("trace", "configs/gear_train_rack.yaml", "-o", str(tmp / "rack"))
+    lm, band = t["lost_motion_mm"], t["lost_motion_mm"]["transmission_error_band_mm"]
+    loaded = pipeline.load("configs/gear_train_rack.yaml")
+    kit, s = pipeline.make_kit(loaded), loaded.spec
+    al, c = s.system.pressure_angle, s.running / 2
+    th = np.linspace(*s.thetas_range, 9)
+    fwd = turn_rack(kit, th, pinion_at=(c * math.cos(al), c * math.sin(al)), rack_dy=-c)
+    back = turn_rack(kit, th, pinion_at=(-c * math.cos(al), c * math.sin(al)), rack_dy=-c)
+    exact = fwd["coast"] - back["drive"]
+    rows = {row["share"]: row for row in lm["shares"]}
+    return {"total_mm": r(lm["total"], 3), "backlash_mm": r(lm["backlash"], 3),
+            "shaft_mm": r(rows["the pinion's shaft in the base"]["at_output"], 3),
+            "rail_mm": r(rows["the rack against its rail"]["at_output"], 3), "worst_mm": r(lm["worst_case"], 3),
+            "p95_mm": r(lm["p95"], 3), "p50_mm": r(lm["p50"], 3), "pinion_arcmin": r(lm["pinion_arcmin"]["total"], 0),
+            "pinion_p95_arcmin": r(lm["pinion_arcmin"]["p95"], 0),
+            "measured_min_mm": r(t["backlash_mm"]["min"], 3), "measured_max_mm": r(t["backlash_mm"]["max"], 3),
+            "exact_min_mm": r(float(exact.min()), 3), "exact_max_mm": r(float(exact.max()), 3),
+            "te_band_um": r(1000 * band["width"], 0), "te_band_p95_um": r(1000 * band["p95_width"], 0),
+            "te_band_worst_um": r(1000 * band["worst_case_width"], 0)}
 
 
 def lissajous(tmp: Path) -> dict:
@@ -530,9 +639,149 @@ def contact(tmp: Path) -> dict:
     return out
 
 
+def crossed(tmp: Path) -> dict:
+    """The shipped crossed helical pair (45° + 45°) and worm, built, checked and traced (the CLI's
+    JSON); each gear's flanks on its float32 mesh against the analytic helicoid (sections at
+    three heights against the transverse involute turned by the helix; the worm's thread against its
+    base circle's involute, as the tests measure them); the check's overlap with -0.1 mm backlash per
+    gear; every STL read back; the pair at 60° (30° + 30°); the bevel's crown-gear limit for 15/25."""
+    import dataclasses
+
+    import numpy as np
+    import trimesh
+    import yaml
+    from shapely import contains_xy
+
+    from partgen import pipeline
+    from partgen.geometry.solid import mesh_arrays
+    from partgen.mechanisms.crossed_helical.contact import mesh_overlaps
+    from partgen.mechanisms.crossed_helical.kit import build_crossed
+    from partgen.mechanisms.crossed_helical.resolve import gear_spec
+    from partgen.testing import measure_spur_gear, mesh_problems, section_outline
+
+    def float32(solid) -> trimesh.Trimesh:
+        v, f = mesh_arrays(solid)
+        return trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
+
+    def helical_flanks(spec, kit) -> dict:
+        """Both gears sectioned at three heights: the flank's worst deviation from the involute (µm,
+        about its mean: measure_spur_gear), the tooth thickness against the design (µm) and tooth 0's
+        centre against the helix's turn there (rad)."""
+        worst, thick, turn, step = 0.0, 0.0, 0.0, 0.0
+        for i, name in enumerate(("gear1", "gear2")):
+            gear, b = (spec.gear1, spec.gear2)[i], spec.face_width[i]
+            mesh = float32(kit.part(name).solid)
+            twist = spec.pair.twist(i, b)
+            for z in (-0.4 * b, 0.05 * b, 0.45 * b):
+                out = section_outline(mesh, z)
+                m = measure_spur_gear(out, gear.teeth, gear.module, gear.system.pressure_angle, centre=(0.0, 0.0))
+                worst = max(worst, m.flank_deviation)
+                thick = max(thick, abs(m.tooth_thickness - gear.tooth_thickness))
+                turned, r_p = twist * z / b, gear.pitch_radius
+                th = turned + np.linspace(-math.pi / gear.teeth, math.pi / gear.teeth, 20001)
+                step = max(step, float(th[1] - th[0]) / 2)  # the centre's resolution
+                centre = th[contains_xy(out, r_p * np.cos(th), r_p * np.sin(th))].mean()
+                turn = max(turn, abs(centre - turned))
+        return {"flank_um": r(1000 * worst, 1), "thickness_um": r(1000 * thick, 1),
+                "turn": f"{turn:.0e} rad" if turn > step else f"{step:.0e} rad (the measurement's resolution)"}
+
+    def thread_flanks(spec, kit) -> dict:
+        """The worm's sections at three heights against the involute of its base circle turned by
+        z tan β / r, along the flank's normal (µm)."""
+        t, b = spec.gear1, spec.face_width[0]
+        mesh = float32(kit.part("gear1").solid)
+        rate = spec.pair.twist(0, b) / b
+        devs = []
+        for z in (-0.3 * b, 0.02 * b, 0.4 * b):
+            P = np.asarray(section_outline(mesh, z).exterior.coords)
+            seg = np.diff(P, axis=0)
+            dense = np.concatenate([P[:-1] + seg * s for s in np.linspace(0, 1, 20, endpoint=False)])
+            rr = np.hypot(*dense.T)
+            band = (rr > t.root_radius + 0.3) & (rr < t.tip_radius - 0.3)
+            a = np.arctan2(dense[band, 1], dense[band, 0]) - rate * z
+            phi = np.mod(a + math.pi, 2 * math.pi) - math.pi
+            devs.append((np.abs(phi) - t.flank_angle(rr[band])) * t.base_radius)
+        d = np.concatenate(devs)
+        return {"flank_um": r(1000 * float(np.abs(d).max()), 1), "flank_mean_um": r(1000 * float(d.mean()), 1)}
+
+    def shells(dest: Path, man: dict, envelope) -> str:
+        ok = 0
+        for p in man["parts"]:
+            mesh = trimesh.load(dest / p["file"], file_type="stl")
+            ok += not mesh_problems(mesh, envelope) and len(mesh.split(only_watertight=False)) == 1
+        return f"{len(man['parts'])} STL, {'each' if ok == len(man['parts']) else f'{ok} of them'} one closed shell"
+
+    out: dict = {}
+    for key, cfg in (("pair", "configs/gear_train_crossed_helical.yaml"), ("worm", "configs/gear_train_worm.yaml")):
+        dest = tmp / key
+        partgen("build", cfg, "-o", str(dest))
+        man = json.loads((dest / "manifest.json").read_text())
+        d = man["design"]
+        c = partgen("check", str(dest), "-o", str(tmp / f"{key}_plates"))
+        t = partgen("trace", str(dest), "-o", str(tmp / f"{key}_trace"))
+        f = c["figures"]
+        loaded = pipeline.load(ROOT / cfg)
+        spec, kit = loaded.spec, pipeline.make_kit(loaded)
+        env = tuple(float(x) for x in kit.printer.envelope)
+        tight = dataclasses.replace(spec, gear1=gear_spec(spec.pair, 0, -0.1, spec.tol),
+                                    gear2=gear_spec(spec.pair, 1, -0.1, spec.tol))
+        vols = mesh_overlaps(build_crossed(tight), f["samples"])
+        out[key] = {
+            "centre_distance_mm": r(d["centre_distance_mm"], 3), "shaft_height_mm": r(d["shaft_height_mm"], 1),
+            "pitch1_mm": r(d["pitch_diameter_mm"][0], 1), "pitch2_mm": r(d["pitch_diameter_mm"][1], 1),
+            "face1_mm": r(d["face_width_mm"][0], 1),
+            "sliding_per_rolling": r(d["sliding_per_rolling"], 2),
+            "check_samples": f["samples"], "overlap_mm3": f["max_overlap_mm3"],
+            "tight_overlap_min_mm3": r(float(vols.min()), 2), "tight_phases_overlapping": int((vols > 0).sum()),
+            "backlash_min_mm": r(f["backlash_mm"]["min"], 3), "backlash_max_mm": r(f["backlash_mm"]["max"], 3),
+            "backlash_designed_mm": r(f["backlash_mm"]["designed"], 3),
+            "te_pp_um": r(1000 * t["transmission_error_mm"]["peak_to_peak"], 1), "trace_samples": t["samples"],
+            "te_check_pp_um": r(1000 * f["transmission_error_mm"]["peak_to_peak"], 1),
+            "ratio_measured": r(t["ratio_measured"], 6),
+            "ratio_error": f"{t['ratio_relative_error']:.0e}" if t["ratio_relative_error"] else "0",
+            "ratio_local_pct": r(100 * t["instantaneous_ratio_deviation"], 2),
+            "exits": "exit 0" if c["ok"] and t.get("ok", True) else "**not both exit 0**",
+            "check_s": r(c["seconds"], 1), "shells": shells(dest, man, env),
+            "triangles_k": r(sum(p["triangles"] for p in man["parts"] if p["name"] == "gear1") / 1000, 0),
+            "chord_mm": spec.tol,
+        }
+        if key == "pair":
+            out[key].update(helical_flanks(spec, kit))
+            fine = pipeline.load(ROOT / cfg, over=pipeline.overrides(["gears.chord_tolerance_mm=0.001"]))
+            out[key]["flank_fine_um"] = helical_flanks(fine.spec, pipeline.make_kit(fine))["flank_um"]
+        else:
+            out[key].update(thread_flanks(spec, kit))
+            # the throated wheel's scallop between two of the generating cut's 12 poses per worm tooth
+            # pitch, (p_t2 sin α_t / 12)² / (8 ρ), ρ the wheel's flank's radius of curvature at its
+            # pitch circle (r sin α_t)
+            sys2 = spec.pair.systems[1]
+            rho = spec.pair.pitch_radius(1) * math.sin(sys2.pressure_angle)
+            out[key]["scallop_um"] = r(1000 * (math.pi * sys2.module * math.sin(sys2.pressure_angle) / 12) ** 2 / (8 * rho), 2)
+            out[key].update(lead_deg=r(d["lead_angle_deg"], 2), friction_angle_deg=r(d["friction_angle_deg"], 2),
+                            friction=d["friction_coefficient"], self_locking="yes" if d["self_locking"] else "no",
+                            efficiency_pct=pct(d["efficiency_gear1_driving"], 0))
+    # the same code at 60° (30° + 30°): another frame, the same kinematic model
+    data = yaml.safe_load((ROOT / "configs" / "gear_train_crossed_helical.yaml").read_text())
+    data.update(name="crossed_60", shaft_angle_deg=60.0)
+    data["gears"]["helix_angle_deg"] = [30.0, 30.0]
+    cfg60 = tmp / "crossed_60.yaml"
+    cfg60.write_text(yaml.safe_dump(data, sort_keys=False))
+    f = partgen("check", str(cfg60), "-o", str(tmp / "s60"))["figures"]
+    out["s60"] = {"overlap_mm3": f["max_overlap_mm3"], "backlash_min_mm": r(f["backlash_mm"]["min"], 3),
+                  "backlash_max_mm": r(f["backlash_mm"]["max"], 3), "backlash_designed_mm": r(f["backlash_mm"]["designed"], 3)}
+    # the page's bevel figures the bevel section does not measure: a pitch cone reaches 90° (a crown
+    # gear) at cos Σ = −z_small / z_large; a gear's triangles at the shipped 0.001 mm chord tolerance
+    out["bevel_crown_limit_15_25_deg"] = r(math.degrees(math.acos(-15 / 25)), 2)
+    partgen("build", "configs/bevel_mitre.yaml", "-o", str(tmp / "mitre"))
+    man = json.loads((tmp / "mitre" / "manifest.json").read_text())
+    out["bevel_gear1_triangles_k"] = r(next(p["triangles"] for p in man["parts"] if p["name"] == "gear1") / 1000, 1)
+    out["bevel_chord_mm"] = yaml.safe_load((ROOT / "configs" / "bevel_mitre.yaml").read_text())["gears"]["chord_tolerance_mm"]
+    return out
+
+
 SECTIONS = {"chain": chain, "drawn": drawn, "gear_pair": gear_pair, "gear_train": gear_train,
             "tolerance": tolerance, "autoplay": autoplay, "sweep": sweep, "bennett": bennett,
-            "calibrate": calibrate, "wrist": wrist, "bevel": bevel, "contact": contact,
+            "calibrate": calibrate, "wrist": wrist, "bevel": bevel, "crossed": crossed, "contact": contact,
             "printers": printers, "jam": jam, "exact": exact, "play": play, "lissajous": lissajous}
 
 

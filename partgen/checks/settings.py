@@ -10,7 +10,8 @@ __all__ = ["CheckSettings"]
 
 @dataclass(frozen=True)
 class CheckSettings:
-    """What `partgen check` holds a kit to (mm, mm³)."""
+    """What `partgen check` holds a kit to (mm, mm³): the resolved ``config.schema.MotionChecks`` (whose
+    defaults are the ones a design gets; these are the same, for a kit made in code)."""
 
     samples: int = 360
     interference_tolerance: float = 0.001

@@ -42,8 +42,8 @@ def run(args) -> int:
 
     keys = r["keys"]
     trade = tradeoff_rows(r["rows"])
-    cost, head = (trade[0], {"pen_error_p95_mm": "pen p95 mm", "lost_motion_arcmin": "lost '"}[trade[0]]) if trade \
-        else (None, "")
+    heads = {"pen_error_p95_mm": "pen p95 mm", "lost_motion_arcmin": "lost '", "lost_motion_mm": "lost mm"}
+    cost, head = (trade[0], heads[trade[0]]) if trade else (None, "")
     lines = [f"{r['design']}: {r['points']} points ({', '.join(keys)}): {r['pass']} pass, {r['fail']} fail, "
              f"{r['refused']} refused; {r['workers']} worker(s), {r['seconds']:.1f} s",
              "  ".join(f"{k:>18}" for k in keys) + f"{'status':>9}{'mass g':>9}{'part mm':>9}{'clear mm':>9}{'P(jam)':>9}"

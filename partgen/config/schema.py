@@ -176,6 +176,32 @@ class DesignHeader(Strict):
     """The printing material: its name and density, for the masses."""
 
 
+class PlateChecks(Strict):
+    """What every kind's `check` block starts with: how its build plates are packed. Each kind extends
+    it (with its own ``samples`` and what else its check holds); one default for every kind."""
+
+    plate_margin_mm: Gap = 5.0
+    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
+
+
+class MotionChecks(PlateChecks):
+    """What `partgen check` holds a kit of gears and joints to over its motion (the shared checks:
+    the sweep, the meshes, the fits, printability, the plates); each kind that uses them extends this
+    with its own ``samples``. One set of defaults for every kind."""
+
+    interference_tolerance_mm3: Annotated[float, Field(ge=0, le=100)] = 0.001
+    """Overlap volume between two parts at a sampled angle above which check fails them as colliding (smaller is
+    numerical noise)."""
+    min_clearance_mm: Gap = 0.3
+    """Least gap between two parts not meant to touch (meshes and joints have their own checks), in the plane and
+    between layers, over the motion; where a kind sizes hubs or bosses by it, it bounds them too."""
+    min_contact_ratio: Annotated[float, Field(ge=1.0, le=3.0)] = 1.2
+    """Least transverse contact ratio of every mesh (1.2: at least 1.2 tooth pairs in contact on average)."""
+    min_tip_width_roads: Annotated[float, Field(ge=0.5, le=10)] = 3.0
+    """Least tooth tip width, in extruded lines (× the printer's line_width_mm): 3 by default, 2 for a fine
+    nozzle's small teeth, where the design says so."""
+
+
 class ToleranceTarget(Strict):
     """What ``auto`` play is chosen for: the least play with P(jam) at most this on the design's
     printer (the linear study, gears seated by their meshes)."""

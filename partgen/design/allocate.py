@@ -290,11 +290,15 @@ class _Analytic:
 
 
 def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samples: int = AUTO_SAMPLES,
-                   seed: int = 0) -> dict:
+                   seed: int = 0, guard: tuple[MarginModel, list[Unit]] | None = None) -> dict:
     """Each unit its own value (on its grid), from ``start`` (grid indices, the uniform choice): the
     least total play Σ weight_i · value_i (weight: the play margins a unit opens per mm,
     ``play_weight``) whose probability of a jam (``_Analytic``: each margin's exact normal tail,
     summed) is no more than at ``start``.
+
+    ``guard``: a second model of the same kit and its units (the same names and grids, in the same
+    order; the worst case: no bore play credited) whose probability may not rise above its own at
+    ``start`` either — play is moved only where neither the headline nor the worst case gets worse.
 
     Deterministic greedy: **descent** — lower by one step the unit that saves most play per
     probability it adds (a step that adds none first, the largest saving first), while the
@@ -311,6 +315,18 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samp
 
     st = _Analytic(model, units, start)
     budget = st.total()
+    gd = _Analytic(guard[0], guard[1], start) if guard is not None else None
+    gbudget = gd.total() if gd is not None else 0
+    if gd is not None and [(u.key, u.name) for u in guard[1]] != [(u.key, u.name) for u in units]:
+        raise ValueError("the guard's units are not the units")
+
+    def within(i: int, d: int) -> bool:
+        return gd is None or gd.trial(i, d) <= gbudget
+
+    def step(i: int, d: int) -> None:
+        st.move(i, d)
+        if gd is not None:
+            gd.move(i, d)
     w = [play_weight(model, u.slope) for u in units]
     save = [quantise(wi * u.step) for wi, u in zip(w, units)]  # play one step of each unit opens, in 1e-6 mm
 
@@ -326,7 +342,7 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samp
                 if i == hold or st.idx[i] <= u.least or save[i] <= 0:
                     continue
                 p = st.trial(i, -1)
-                if p > budget:
+                if p > budget or not within(i, -1):
                     continue
                 added = p - now
                 k = (0, -save[i], -st.idx[i] * save[i], i) if added <= 0 else \
@@ -335,7 +351,7 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samp
                     best, key = i, k
             if best is None:
                 return moves
-            st.move(best, -1)
+            step(best, -1)
             moves += 1
         return moves
 
@@ -353,7 +369,7 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samp
         kept = False
         for _, i in sorted(gains)[:EXCHANGE_TRIES]:
             before = list(st.idx)
-            st.move(i, +1)
+            step(i, +1)
             descend(i)
             if cost() < now:
                 kept = True
@@ -361,7 +377,7 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samp
                 break
             for n in range(len(units)):  # undo: back to the values before the raise
                 if st.idx[n] != before[n]:
-                    st.move(n, before[n] - st.idx[n])
+                    step(n, before[n] - st.idx[n])
         if not kept:
             break
         descend(None)
@@ -373,4 +389,5 @@ def allocate_units(model: MarginModel, units: list[Unit], start: list[int], samp
     return {"values": [u.value(i) for u, i in zip(units, st.idx)], "index": list(st.idx), "jams": j,
             "probability": j / samples, "ci95": [lo95, hi95], "cost_mm": round(cost() * 1e-6, 6),
             "weights": [round(x, 6) for x in w], "exchanges": exchanges, "jam": jam,
-            "analytic": {"start": budget * PROB_STEP, "end": st.total() * PROB_STEP}}
+            "analytic": {"start": budget * PROB_STEP, "end": st.total() * PROB_STEP},
+            "guard": None if gd is None else {"start": gbudget * PROB_STEP, "end": gd.total() * PROB_STEP}}

@@ -17,16 +17,19 @@ __all__ = ["saved_tolerance", "tolerance_section", "tolerance_bars", "SWEEP_COLU
 
 SWEEP_COLUMNS = ("point", "status", "ok", "failures", "first_failure", "mass_g", "size_mm", "parts",
                  "least_clearance_mm", "jam_probability", "jam_ci95_low", "jam_ci95_high", "pen_error_mm",
-                 "pen_error_p95_mm", "lost_motion_arcmin", "seconds")
+                 "pen_error_p95_mm", "lost_motion_arcmin", "lost_motion_mm", "seconds")
 # what play costs, by what a trace measures (design.play: the chain's pen across its path; a gear
-# train's lost motion at the output): (column, label), the first one a sweep's points have is plotted
+# train's lost motion at the output, a rack's along its travel): (column, label), the first one a sweep's
+# points have is plotted
 PLAY_COSTS = (("pen_error_p95_mm", "pen error across the path, 95 % of prints (mm)"),
-              ("lost_motion_arcmin", "lost motion at the output (arcmin)"))
+              ("lost_motion_arcmin", "lost motion at the output (arcmin)"),
+              ("lost_motion_mm", "lost motion at the rack (mm of travel)"))
 
 
 def play_cost(stats: dict) -> dict:
     """What play costs in a trace's figures: the pen's error across the path (worst case and 95 % of
-    prints, mm) or the output's lost motion (arcmin); {} when the trace measures neither."""
+    prints, mm) or the output's lost motion (arcmin; a rack's in mm of travel); {} when the trace measures
+    none."""
     out = {}
     band = stats.get("pen_error_band_mm")
     if isinstance(band, dict) and "path_p95_max" in band:
@@ -34,6 +37,9 @@ def play_cost(stats: dict) -> dict:
     lm = stats.get("lost_motion_arcmin")
     if isinstance(lm, dict) and "total" in lm:
         out["lost_motion_arcmin"] = lm["total"]
+    lm = stats.get("lost_motion_mm")
+    if isinstance(lm, dict) and "total" in lm:
+        out["lost_motion_mm"] = lm["total"]
     return out
 
 

@@ -188,7 +188,8 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         most[k] = lo
         got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
     values = got["values"]
-    per_unit = _per_unit(raw, mech, model, keys, got, most)
+    per_unit = _per_unit(raw, mech, model, keys, got, most,
+                         lambda: hook(spec, kit, result, kit.printer.xy_accuracy, seated=False))
     design_values = dict(values)
     if per_unit["adopted"]:
         for k, own in per_unit["own"].items():
@@ -212,7 +213,23 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     return _with(raw, design_values), alloc
 
 
-def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict) -> dict:
+def _units(model, keys: dict, got: dict, most: dict) -> tuple[list[Unit], list[int]] | str:
+    """(each gear's and each running fit's unit, the uniform choice's grid index of each) of a
+    model, or what stops the split."""
+    units, start = [], []
+    for k, role in keys.items():
+        label, s0, step, top = ROLES[role]
+        slopes = gear_slopes(model) if role == "backlash" else joint_slopes(model)
+        if not slopes or not np.allclose(sum(slopes.values()), _slope(role, model), atol=1e-12):
+            return f"{k}: the model's margins do not split into one per {'gear' if role == 'backlash' else 'joint'}"
+        i0 = int(round(got["values"][k] / step))
+        for name, sl in slopes.items():
+            units.append(Unit(k, name, s0, sl, step, 1, most.get(k, int(round(top / step)))))
+            start.append(i0)
+    return units, start
+
+
+def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict, worst_model) -> dict:
     """Each gear its own backlash and each running fit its own clearance, from the uniform choice
     ``got`` (``design.allocate.allocate_units``, on the same prints and grids, each unit at most its
     key's most), with a probability of a jam (each margin's exact normal tail, summed) no more than
@@ -220,30 +237,35 @@ def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict)
     any prints; adopted when it saves more play than one grid step of the coarsest key over the
     whole kit (the uniform choice's own resolution), meets the target on the same 20,000 prints as
     the uniform choice, and builds without a warning the uniform kit has not. The result says why not
-    when it is not."""
+    when it is not.
+
+    The worst case is held too (``worst_model()``: the same check's model with no bore play
+    credited, every gear centred): the allocation may not raise its probability above the uniform
+    choice's (``allocate_units``' guard), so a kit that leans on its gears being seated never gets
+    worse than the uniform kit when they are not."""
     per = getattr(type(raw.design), "PER_UNIT_PLAY", frozenset())
     out = {"adopted": False, "why": None, "threshold": "more than one grid step of the coarsest key over the kit"}
     if not per or not set(keys) <= set(per):
         out["why"] = f"a {mech.kind} design takes one value per key"
         return out
-    units, start = [], []
-    for k, role in keys.items():
-        label, s0, step, top = ROLES[role]
-        slopes = gear_slopes(model) if role == "backlash" else joint_slopes(model)
-        if not slopes or not np.allclose(sum(slopes.values()), _slope(role, model), atol=1e-12):
-            out["why"] = f"{k}: the model's margins do not split into one per {'gear' if role == 'backlash' else 'joint'}"
-            return out
-        i0 = int(round(got["values"][k] / step))
-        for name, sl in slopes.items():
-            units.append(Unit(k, name, s0, sl, step, 1, most.get(k, int(round(top / step)))))
-            start.append(i0)
-    res = allocate_units(model, units, start, got["samples"], got["seed"])
+    split = _units(model, keys, got, most)
+    if isinstance(split, str):
+        out["why"] = split
+        return out
+    units, start = split
+    worst = worst_model()
+    wsplit = _units(worst, keys, got, most)
+    if isinstance(wsplit, str) or [(u.key, u.name) for u in wsplit[0]] != [(u.key, u.name) for u in units]:
+        out["why"] = "the worst case's model does not split into the same gears and joints: one value per key"
+        return out
+    res = allocate_units(model, units, start, got["samples"], got["seed"], guard=(worst, wsplit[0]))
     uniform = sum(play_weight(model, u.slope) * u.value(i) for u, i in zip(units, start))
     saving = uniform - res["cost_mm"]
     need = max(got["weights"][k] * ROLES[r][2] for k, r in keys.items())
     own = {k: {u.name: v for u, v in zip(units, res["values"]) if u.key == k and v != got["values"][k]} for k in keys}
     out.update({"analytic": res["analytic"], "own": {k: o for k, o in own.items() if o}, "uniform_cost_mm": round(uniform, 6),
-                "saving_mm": round(saving, 6), "saving_pct": round(100 * saving / uniform, 3) if uniform else 0.0,
+                "saving_mm": round(max(saving, 0.0), 6),
+                "saving_pct": round(100 * max(saving, 0.0) / uniform, 3) if uniform else 0.0,
                 "threshold_mm": round(need, 6), "exchanges": res["exchanges"],
                 **{k: res[k] for k in ("jams", "probability", "ci95", "cost_mm")}})
     jam = res["jam"]
@@ -255,8 +277,10 @@ def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict)
     out["groups"] = {g: int(jam[:, [m.group == g for m in model.margins]].any(axis=1).sum())
                      for g in got["groups"]}
     if quantise(saving) <= quantise(need):
-        out["why"] = (f"it saves {saving:.3g} mm of {uniform:.3g} mm, not more than one grid step of the coarsest "
-                      f"key over the kit ({need:.3g} mm): the uniform values are kept")
+        g = res["guard"]
+        out["why"] = (f"held to the uniform values' worst case (no bore play credited: P(jam) {100 * g['start']:.3g} % "
+                      f"by the model) it saves {max(saving, 0.0):.3g} mm of {uniform:.3g} mm, not more than one grid "
+                      f"step of the coarsest key over the kit ({need:.3g} mm): the uniform values are kept")
         return out
     # reported: the jams on prints neither choice was made on (another 20,000: seed, chunk HELD_OUT)
     held = _draws(model, got["samples"], got["seed"], HELD_OUT)
@@ -267,6 +291,14 @@ def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict)
         return int(((held + (np.asarray(vals) - starts) @ S) < 0.0).any(axis=1).sum())
     out["held_out"] = {"prints": got["samples"], "uniform_jams": held_jams([u.value(i) for u, i in zip(units, start)]),
                        "jams": held_jams(res["values"])}
+    wdraws = _draws(worst, got["samples"], got["seed"])
+    wS = np.array([u.slope for u in wsplit[0]])
+
+    def worst_jams(vals) -> int:
+        return int(((wdraws + (np.asarray(vals) - starts) @ wS) < 0.0).any(axis=1).sum())
+    out["worst_case"] = {"prints": got["samples"], "seat": worst.credits,
+                         "uniform_jams": worst_jams([u.value(i) for u, i in zip(units, start)]),
+                         "jams": worst_jams(res["values"]), "analytic": res["guard"]}
     allowed = int(math.floor(got["target"] * got["samples"] + 1e-9)) if got["reached"] else got["jams"]
     if res["jams"] > allowed:
         out["why"] = (f"it jams {res['jams']} of the {got['samples']:,} prints, more than the target's {allowed}: "

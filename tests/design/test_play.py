@@ -102,16 +102,7 @@ def test_trace_json_has_the_band_for_chain_and_belt():
 
 # --- gear trains: lost motion at the output -----------------------------------------------------------
 
-def test_train_lost_motion_moves_with_backlash_and_clearance():
-    from partgen.mechanisms.gear_train.stages.play import lost_motion
-
-    base = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.1"))
-    lash = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.2"))
-    loose = lost_motion(_spec("gear_train_reducer", "gears.backlash_per_gear_mm=0.1",
-                              "shafts.running_clearance_diametral_mm=0.5"))
-    assert lash["backlash"] > 1.5 * base["backlash"] and lash["bores"] == pytest.approx(base["bores"])
-    assert loose["bores"] > 1.5 * base["bores"] and loose["backlash"] == pytest.approx(base["backlash"])
-    assert loose["total"] > base["total"] and lash["total"] > base["total"]
+# (the stages' growth with backlash and clearance: tests/mechanisms/gear_train/test_stages_play.py)
 
 
 def test_train_backlash_matches_the_printed_outlines():

@@ -1,9 +1,9 @@
 """``auto`` play allocated per gear and per running joint (design.allocate.allocate_units,
 mechanisms.autoplay): from the uniform choice, on the same fixed prints, the least total play with
-P(jam) at most the target; adopted on the default chain (it lowers the total play by more than one
-grid step of the coarsest key), pinned in the kit's design.yaml as {default: mm, <name>: mm}, which
-rebuilds the same kit and meets the target on its own quick study; each gear's own backlash reaches
-its teeth (measured on the solid's section); bad names exit 2.
+P(jam) at most the target, and the worst case (no bore play credited) no worse than the uniform
+choice's: held to that, the default chain keeps its uniform values; a mapping {default: mm, <name>:
+mm} pinned in the kit's design.yaml rebuilds the same kit; each gear's own backlash reaches its teeth
+(measured on the solid's section); bad names exit 2.
 
 Cost: one chain search and one check of its pinned kit (module fixtures), gear pair builds, and
 synthetic margin models."""
@@ -120,6 +120,33 @@ def test_allocation_moves_play_to_the_mesh_that_carries_the_jams():
     assert allocate_units(model, units, start)["values"] == got["values"]  # deterministic
 
 
+def test_the_worst_case_guard_keeps_the_worst_case():
+    """Mesh 0's bores' play is credited to it when the gears are seated (its margins 0.06 mm wider) and
+    not in the worst case. Unbounded, the allocation thins mesh 0's gears, which the credit covers,
+    and the worst case's probability rises; held to it, the worst case's probability stays at most the
+    uniform choice's, the headline's too, and the play is no more than the uniform's."""
+    worst = _meshes((0.03, 0.03, 0.03, 0.03))
+    credit = np.array([0.06, 0.0, 0.0, 0.0])
+    seated = MarginModel(worst.features, worst.margins, worst.coeff, worst.sigma, worst.nominal + credit,
+                         worst.accuracy_mm)
+    units, wunits = _units(seated), _units(worst)
+    slope = np.array([m.per_backlash for m in seated.margins])
+    from partgen.design.allocate import Knob
+    uni = least_allocation(seated, [Knob(BL, "backlash per gear", 0.0, slope, 0.005, 1, 100)], 0.01)
+    b = uni["values"][BL]
+    start = [round(b / 0.005)] * len(units)
+    w_budget = _analytic(worst, wunits, [b] * len(units))
+    free = allocate_units(seated, units, start)
+    assert _analytic(worst, wunits, free["values"]) > 1.5 * w_budget  # unbounded: the worst case rises
+    held = allocate_units(seated, units, start, guard=(worst, wunits))
+    assert _analytic(worst, wunits, held["values"]) <= w_budget * (1 + 1e-9)
+    assert held["guard"]["end"] <= held["guard"]["start"] + 1e-12
+    assert _analytic(seated, units, held["values"]) <= _analytic(seated, units, [b] * len(units)) * (1 + 1e-9)
+    assert held["cost_mm"] <= uni["cost_mm"] + 1e-9 and held["cost_mm"] > free["cost_mm"]
+    with pytest.raises(ValueError):
+        allocate_units(seated, units, start, guard=(worst, wunits[::-1]))
+
+
 def _perturbed(model, n):
     direction = math.inf if n > 0 else -math.inf
     nominal, coeff = model.nominal.copy(), model.coeff.copy()
@@ -159,6 +186,11 @@ def test_allocation_survives_ulp_perturbations(which):
         assert allocate_units(moved, make(moved), idx)["values"] == base["values"], n
 
 
+# the chain with its own values for a few gears and joints, as an allocation pins them in design.yaml
+OWN_BL = {"default": 0.1, "D4": 0.08, "G11": 0.12}
+OWN_RC = {"default": 0.21, "G5": 0.24, "M3": 0.19}
+
+
 @pytest.fixture(scope="module")
 def chain_auto():
     """The default chain with its running clearance auto too (the backlash is auto in the file)."""
@@ -166,9 +198,15 @@ def chain_auto():
 
 
 @pytest.fixture(scope="module")
-def pinned(chain_auto, tmp_path_factory):
+def chain_own():
+    """The default chain with each key a mapping {default: mm, <name>: mm}."""
+    return pipeline.load(CHAIN, over=pipeline.overrides([f"{BL}={OWN_BL}", f"{RC}={OWN_RC}"]))
+
+
+@pytest.fixture(scope="module")
+def pinned(chain_own, tmp_path_factory):
     """The kit's design.yaml and printer.yaml as build writes them, checked from that file."""
-    loaded = chain_auto
+    loaded = chain_own
     kit = pipeline.make_kit(loaded)
     d = tmp_path_factory.mktemp("pinned")
     for name, data in loaded.mechanism.kit_files(loaded.spec, kit, loaded.raw).items():
@@ -176,52 +214,43 @@ def pinned(chain_auto, tmp_path_factory):
     return d / "design.yaml", pipeline.check(str(d / "design.yaml"), None, write_plates=False)
 
 
-def test_the_default_chain_is_allocated_and_saves_play(chain_auto):
+def test_the_default_chains_allocation_is_held_to_the_worst_case(chain_auto):
+    """Both keys auto on the default chain: the uniform choice meets the target; moved gear by gear
+    under the worst case's bound (no bore play credited, the uniform choice's), no step saves play, so
+    the uniform values are kept and build says why. The allocation unbounded would save play by
+    thinning gears whose bores' play is credited — and raise the worst case (shown on the model)."""
     a = chain_auto.auto
     pu = a["per_unit"]
-    assert pu["adopted"], pu["why"]
+    assert not pu["adopted"] and "worst case" in pu["why"], pu["why"]
     assert a["meshes"] == 21 and a["joints"] == 22
-    assert pu["jams"] <= math.floor(a["target"] * a["samples"]) and pu["analytic"]["end"] <= pu["analytic"]["start"]
-    h = pu["held_out"]  # on other prints: about as many jams as the uniform values (not fitted to its prints' luck)
-    assert abs(h["jams"] - h["uniform_jams"]) < 4 * math.sqrt(h["uniform_jams"]), h
-    assert a["probability"] == pu["probability"] <= 0.01
-    assert pu["cost_mm"] < pu["uniform_cost_mm"] - pu["threshold_mm"]  # more than one grid step of the coarsest key
-    assert pu["uniform_cost_mm"] == a["uniform"]["cost_mm"]
-    own = pu["own"]
-    assert own[BL] and own[RC]  # both keys allocated
-    for k, step in ((BL, 0.005), (RC, 0.01)):
-        for v in own[k].values():
-            assert round(v / step, 9) == round(v / step) and v != a["values"][k]  # on the grid, differs from the default
-    # the design carries the mapping, the spec each gear's own backlash and each joint's own clearance
-    doc = chain_auto.raw.document()
-    assert doc["gears"]["backlash_per_gear_mm"] == {"default": a["values"][BL], **own[BL]}
-    assert doc["joints"]["running_clearance_diametral_mm"] == {"default": a["values"][RC], **own[RC]}
-    gears = dict(chain_auto.spec.mechanism.gears)
-    for name, v in own[BL].items():
-        assert gears[name].system.backlash_per_gear == v
-    p = chain_auto.spec.params
-    for name, v in own[RC].items():
-        assert math.isclose(p.bore_of(name), p.joints.axle_diameter + v)
+    assert a["probability"] <= 0.01 and a["jams"] <= math.floor(a["target"] * a["samples"])
+    assert pu["analytic"]["end"] <= pu["analytic"]["start"]
+    doc = chain_auto.raw.document()  # numbers, not mappings
+    assert doc["gears"]["backlash_per_gear_mm"] == a["values"][BL]
+    assert doc["joints"]["running_clearance_diametral_mm"] == a["values"][RC]
 
 
-def test_the_pinned_design_rebuilds_the_kit_and_meets_the_target(chain_auto, pinned):
+def test_the_pinned_design_rebuilds_the_kit(chain_own, pinned):
     path, checked = pinned
     data = yaml.safe_load(path.read_text())
-    assert isinstance(data["gears"]["backlash_per_gear_mm"], dict)
+    assert data["gears"]["backlash_per_gear_mm"] == OWN_BL
+    assert data["joints"]["running_clearance_diametral_mm"] == OWN_RC
     again = checked.loaded
     assert again.auto is None  # numbers, no search
-    assert again.spec.mechanism == chain_auto.spec.mechanism and again.spec.params == chain_auto.spec.params
-    jam = checked.result.figures["jam"]
-    a = chain_auto.auto
-    assert jam["probability"] <= a["target"] + 0.002, jam  # the kit's own quick study
-    assert abs(jam["probability"] - a["probability"]) <= 0.001  # what the allocation predicted
+    assert again.spec.mechanism == chain_own.spec.mechanism and again.spec.params == chain_own.spec.params
+    gears = dict(chain_own.spec.mechanism.gears)
+    for name, v in OWN_BL.items():
+        if name != "default":
+            assert gears[name].system.backlash_per_gear == v
     # the running contacts carry each joint's own clearance
     runs = {c.a: c.radial_gap for c in checked.kit.contacts if c.kind == "running"}
-    for name, v in a["per_unit"]["own"][RC].items():
+    own_rc = {k: v for k, v in OWN_RC.items() if k != "default"}
+    for name, v in own_rc.items():
         assert math.isclose(runs[name], v / 2)
+        assert math.isclose(chain_own.spec.params.bore_of(name), chain_own.spec.params.joints.axle_diameter + v)
     rows = {tuple(r["parts"]): r.get("radial_gap_mm") for r in checked.result.figures["fits"]["rows"]}
     carrier = {c.a: c.b for c in checked.kit.contacts if c.kind == "running"}
-    for name, v in a["per_unit"]["own"][RC].items():  # measured on the solids
+    for name, v in own_rc.items():  # measured on the solids
         got = rows[(name, carrier[name])]
         assert abs(got - v / 2) < 0.003, (name, got, v)
 
@@ -271,19 +300,19 @@ def test_a_gears_own_clearance_reaches_its_bore():
     assert gaps == pytest.approx({"gear1 on its post": 0.3, "gear2 on its post": 0.2})
 
 
-def test_a_chain_gears_own_backlash_reaches_its_teeth(chain_auto, pinned):
-    """In the allocated chain kit: a D gear with its own backlash has the teeth the formula gives for
-    it; one thinner than the default has thicker teeth than it would with the default."""
+def test_a_chain_gears_own_backlash_reaches_its_teeth(chain_own, pinned):
+    """In the chain kit with its own values: a D gear with its own backlash has the teeth the formula
+    gives for it; one thinner than the default has thicker teeth than it would with the default."""
     _, checked = pinned
-    own = chain_auto.auto["per_unit"]["own"][BL]
-    name = next(n for n in own if n.startswith("D") and own[n] < chain_auto.auto["values"][BL])
+    own = {k: v for k, v in OWN_BL.items() if k != "default"}
+    name = next(n for n in own if n.startswith("D") and own[n] < OWN_BL["default"])
     part = next(p for p in checked.kit.parts if p.name == name)
     g = part.gear
     assert g.system.backlash_per_gear == own[name]
     got = _thickness(section(part.solid, checked.loaded.spec.params.face_width / 2), g.pitch_radius, g.teeth)
     want = involute.reference_tooth_thickness(g.teeth, g.module, g.system.pressure_angle, g.profile_shift, own[name])
     default = involute.reference_tooth_thickness(g.teeth, g.module, g.system.pressure_angle, g.profile_shift,
-                                                 chain_auto.auto["values"][BL])
+                                                 OWN_BL["default"])
     assert abs(got - want) < 0.004 and got > default + 0.003, (got, want, default)
 
 

@@ -40,6 +40,9 @@ def resolve_bennett(loaded: LoadedDesign) -> BennettParams:
     if parts.bar_diameter_mm > parts.boss_length_mm:
         raise ConfigError(loaded.path, "parts.bar_diameter_mm", f"{parts.bar_diameter_mm} mm is thicker than a boss is long "
                           f"({parts.boss_length_mm} mm): a bar would stand proud of its boss into the next one on the pin")
+    if d.pin.clearance_diametral_mm == "auto":  # pipeline.load puts auto play's number in its place first
+        raise ConfigError(loaded.path, "pin.clearance_diametral_mm", "auto is chosen when partgen loads the design "
+                          "(mechanisms.autoplay); this design was resolved without it")
     pin_clearance = printer_fit(loaded, d.pin.clearance_diametral_mm, "running", "pin.clearance_diametral_mm")
     if len(set(cw.links)) != 3:
         raise ConfigError(loaded.path, "counterweights.links", "three different links")

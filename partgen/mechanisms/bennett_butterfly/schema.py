@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import (DesignHeader, Density, Finite, Gap, Length, Material, NonNeg, Ratio, Strict)
+from ...config.schema import (DesignHeader, Density, Finite, Gap, Length, Material, NonNeg, Ratio, Strict,
+                               ToleranceTarget)
 
 __all__ = ["BennettDesign"]
 
@@ -84,9 +85,12 @@ class Pin(Strict):
     """What the bill calls the bought pins."""
     diameter_mm: Length
     """Diameter of the steel pins every joint runs on."""
-    clearance_diametral_mm: Gap | Literal["printer"]
+    clearance_diametral_mm: Gap | Literal["printer", "auto"]
     """Diametral running clearance, a bore minus its pin (bore = diameter + clearance); printer: the printer
-    profile's measured running fit."""
+    profile's measured running fit (fits.running_clearance_diametral_mm); auto: the least (on a 0.01 mm grid,
+    diametral) with which a print jams with probability at most tolerance.max_jam_probability on the design's
+    printer: the pins in every bore and the four Bennett loops closing on their joints' play (docs/tolerance.md);
+    build prints the choice and pins it in the kit's design.yaml."""
     density_g_cm3: Density = 7.85
     """Density of the pins, for their mass in the balance and the bill."""
     stock_lengths_mm: Annotated[list[Length], Field(min_length=1, max_length=200)] = Field(
@@ -165,6 +169,7 @@ class BennettChecks(Strict):
 
 
 class BennettDesign(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"pin.clearance_diametral_mm": "running"}  # mechanisms.autoplay
     kind: Literal["bennett_butterfly"]
     """The mechanism this file designs: `bennett_butterfly` selects these keys."""
     linkage: BennettLinkage
@@ -181,3 +186,5 @@ class BennettDesign(DesignHeader):
     """The base: a post on a flat foot holding the S stack."""
     checks: BennettChecks = BennettChecks()
     """What partgen check holds the kit to."""
+    tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that auto play (pin.clearance_diametral_mm) is chosen for, and above which check warns."""

@@ -7,7 +7,7 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import DesignHeader, Gap, Length, Strict, ToleranceTarget
+from ...config.schema import DesignHeader, PlateChecks, Gap, Length, Strict, ToleranceTarget
 from ..solid_pair import PairFrame
 
 __all__ = ["BevelDesign"]
@@ -63,12 +63,12 @@ class BevelFrame(PairFrame):
     """Length of gear 2's block along gear 2's axis: how deep the pin is held."""
 
 
-class BevelChecks(Strict):
+class BevelChecks(PlateChecks):
+    """What `partgen check` holds the pair to."""
+
     samples: Annotated[int, Field(ge=4, le=1000)] = 12
     """Phases checked over one tooth pitch of gear 1, each an exact 3-D interference and backlash test (--samples
     overrides it)."""
-    plate_margin_mm: Gap = 5.0
-    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 class BevelDesign(DesignHeader):

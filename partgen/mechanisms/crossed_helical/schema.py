@@ -7,7 +7,7 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import DesignHeader, Gap, Length, Strict, ToleranceTarget
+from ...config.schema import DesignHeader, PlateChecks, Gap, Length, Strict, ToleranceTarget
 from ..solid_pair import PairFrame
 
 __all__ = ["CrossedHelicalDesign"]
@@ -63,15 +63,15 @@ class CrossedFrame(PairFrame):
     """The shared frame (``mechanisms.solid_pair.PairFrame``): gear 2's pin held by two blocks."""
 
 
-class CrossedChecks(Strict):
+class CrossedChecks(PlateChecks):
+    """What `partgen check` holds the pair to."""
+
     samples: Annotated[int, Field(ge=4, le=1000)] = 12
     """Phases checked over one tooth pitch of gear 1, each an exact 3-D interference and backlash test (--samples
     overrides it)."""
     friction_coefficient: Annotated[float, Field(ge=0.0, le=1.0)] = 0.15
     """Assumed sliding friction coefficient along the teeth, from which check states the efficiency both ways and
     whether the pair self-locks."""
-    plate_margin_mm: Gap = 5.0
-    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 class CrossedHelicalDesign(DesignHeader):

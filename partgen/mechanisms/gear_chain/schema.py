@@ -6,8 +6,8 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import AfterValidator, Field, model_validator
 
-from ...config.schema import DesignHeader, ToleranceTarget
-from ...config.schema import (MAX, Coeff, Finite, Gap, Length, NonNeg, Pos, Ratio, Strict,
+from ...config.schema import DesignHeader, MotionChecks, ToleranceTarget
+from ...config.schema import (MAX, Coeff, Finite, Gap, Length, Ratio, Strict,
                               Teeth)
 
 __all__ = ["Design"]
@@ -339,24 +339,11 @@ class Belts(Strict):
         return self
 
 
-class Checks(Strict):
+class Checks(MotionChecks):
     """What `partgen check` holds a kit to."""
 
     samples: Annotated[int, Field(ge=4, le=10_000)] = 360
     """Crank angles checked over one cycle (--samples overrides it)."""
-    interference_tolerance_mm3: NonNeg = 0.001
-    """Overlap volume between two parts at a sampled angle above which check fails them as colliding (smaller is
-    numerical noise)."""
-    min_clearance_mm: Gap = 0.3
-    """Least gap between two parts not meant to touch (meshes and joints have their own checks), in the plane and
-    between layers, over the motion."""
-    min_contact_ratio: Pos = 1.2
-    """Least transverse contact ratio of every mesh (1.2: at least 1.2 tooth pairs in contact on average)."""
-    min_tip_width_roads: Pos = 3.0
-    """Least tooth tip width, in extruded lines (× the printer's line_width_mm)."""
-    plate_margin_mm: Gap = 5.0
-    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
-
 
 
 class Design(DesignHeader):

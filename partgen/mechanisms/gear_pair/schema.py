@@ -6,7 +6,7 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import AfterValidator, Field, model_validator
 
-from ...config.schema import DesignHeader, ToleranceTarget, Gap, Length, Strict, Teeth
+from ...config.schema import DesignHeader, PlateChecks, ToleranceTarget, Gap, Length, Strict, Teeth
 
 __all__ = ["GearPairDesign"]
 
@@ -81,11 +81,11 @@ class PairBase(Strict):
     """How far the base plate reaches beyond each gear's tip circle."""
 
 
-class PairChecks(Strict):
+class PairChecks(PlateChecks):
+    """What `partgen check` holds the pair to."""
+
     samples: Annotated[int, Field(ge=8, le=10_000)] = 180
     """Input angles checked, evenly over one revolution of the output (check and trace; --samples overrides it)."""
-    plate_margin_mm: Gap = 5.0
-    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 class GearPairDesign(DesignHeader):

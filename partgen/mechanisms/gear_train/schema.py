@@ -7,7 +7,7 @@ from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import DesignHeader, Gap, Length, Ratio, Strict, Teeth, ToleranceTarget
+from ...config.schema import DesignHeader, Gap, Length, MotionChecks, Ratio, Strict, Teeth, ToleranceTarget
 
 __all__ = ["GearTrainDesign"]
 
@@ -178,21 +178,12 @@ class Frame(Strict):
     other shafts' gears by checks.min_clearance_mm."""
 
 
-class TrainChecks(Strict):
+class TrainChecks(MotionChecks):
+    """What `partgen check` holds a train to (the shared checks' settings; frame.hub_diameter_mm is bounded
+    by min_clearance_mm)."""
+
     samples: Annotated[int, Field(ge=8, le=10_000)] = 360
     """Angles checked over one turn of the slowest shaft, or over the rack's travel (--samples overrides it)."""
-    interference_tolerance_mm3: Annotated[float, Field(ge=0, le=100)] = 0.001
-    """Overlap volume between two parts at a sampled angle above which check fails them as colliding (smaller is
-    numerical noise)."""
-    min_clearance_mm: Gap = 0.3
-    """Least gap between two parts not meant to touch (meshes and joints have their own checks), in the plane and
-    between layers, over the motion; it also bounds the hubs (frame.hub_diameter_mm)."""
-    min_contact_ratio: Annotated[float, Field(ge=1.0, le=3.0)] = 1.2
-    """Least transverse contact ratio of every mesh (1.2: at least 1.2 tooth pairs in contact on average)."""
-    min_tip_width_roads: Annotated[float, Field(ge=0.5, le=10)] = 2.0
-    """Least tooth tip width, in extruded lines (× the printer's line_width_mm)."""
-    plate_margin_mm: Gap = 5.0
-    """Gap left between parts packed on a build plate (the plates check and the 3MF plates), mm."""
 
 
 class GearTrainDesign(DesignHeader):

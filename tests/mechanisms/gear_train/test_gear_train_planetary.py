@@ -62,10 +62,11 @@ def test_check_passes_and_the_carrier_turns_at_the_ratio(planetary):
     assert result.figures["max_printed_overlap_mm2"] == 0.0
     tr = MECHANISM.trace(spec, kit, 12, None)
     assert tr.stats["ratio_measured"] == pytest.approx(5.0, rel=2e-4)
-    # carrier-frame chain sun → planet → ring: both meshes' backlash (2 × the config's per gear each) carried to the
-    # ring's pitch circle
+    # the sun held, the ring fixed: the carrier turns freely through both meshes' backlash (2 × the config's per gear
+    # each) over r_sun + r_ring = 2a (the planet rolls on the sun: its ring side moves twice its centre). Not over
+    # r_ring alone: that is the sun held still in the carrier's frame, 1 + z_s/z_r = 1.25 times as much
     j = 2 * spec.system.backlash_per_gear
-    want = math.degrees((j + j) / (1.5 * 72 / 2)) * 60
+    want = math.degrees((j + j) / (1.5 * (18 + 72) / 2)) * 60
     assert want * 0.98 < tr.stats["backlash_arcmin"]["min"] <= tr.stats["backlash_arcmin"]["max"] < want * 1.05
 
 

@@ -1,4 +1,4 @@
-"""A gear train's report says what its play costs: the output's lost motion (arc-minutes, per mesh)
+"""A gear train's report says what its play costs: the output's lost motion (arc-minutes, per mesh and body)
 and the transmission-error band, the figures trace measures (mechanisms/gear_train/stages/play.py)."""
 
 import re
@@ -21,7 +21,7 @@ def test_report_shows_lost_motion_and_the_transmission_error_band():
     assert f"<b>{lm['total']:.1f} arcmin</b>" in html and f"backlash {lm['backlash']:.1f} arcmin" in html
     band = lm["transmission_error_band_arcmin"]
     assert f"{band['low']:.1f} … {band['high']:.1f} arcmin" in html and band["width"] > lm["bores"]
-    assert html.count("<tr>") == 1 + len(lm["meshes"])  # a row per mesh
+    assert html.count("<tr>") == 1 + len(lm["shares"])  # a row per mesh and per body in its bore
     # more running clearance: more lost motion, and the report says so
     looser, lm2 = _section("configs/gear_train_reducer.yaml", "shafts.running_clearance_diametral_mm=0.5")
     assert lm2["total"] > lm["total"] + 5

@@ -11,7 +11,10 @@
   trace), its plot, ``trace --csv`` and the text ``trace`` prints.
 * ``tolerance.py``: the margins every sub-slice's tolerance model is made of (running fits, external
   meshes, the clearances over the motion).
-* ``report.py``: the bill ``build`` prints (its lines per part) and the assembly steps.
+* ``play.py``: what play costs at the output — a lost motion as shares of backlash and bores' play over
+  the tolerance model's features: nominal, worst case, 95 % of prints, the transmission-error band.
+* ``report.py``: the bill ``build`` prints (its lines per part), the assembly steps and the report's
+  "What play costs".
 
 This package's ``SubSlice`` is what each sub-slice's package gives ``mechanism.py`` (its ``SLICE``).
 """

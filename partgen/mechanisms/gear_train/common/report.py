@@ -4,7 +4,41 @@ planets and carrier or the rack, the top plate)."""
 
 from __future__ import annotations
 
-__all__ = ["bill_text", "assembly_steps"]
+__all__ = ["bill_text", "assembly_steps", "lost_motion_html"]
+
+UNITS = {"arcmin": ("arcmin", "{:.1f}"), "mm": ("mm", "{:.3f}")}
+
+
+def lost_motion_html(lm: dict, unit: str = "arcmin", output: str = "the output", note: str = "") -> str:
+    """The report's "What play costs" of a train (``common/play.py``, ``stages/play.py``): the lost motion at
+    ``output`` (in ``unit``, "arcmin" or "mm") from each mesh's backlash and the bores' play, over prints
+    when the figures have them, the transmission-error band, and a table of where it comes from (a row
+    per share: each mesh's backlash, each body's play); ``note``: a sentence after the headline."""
+    from ....export import report as R
+
+    u, f = UNITS[unit]
+    v = lambda x: f.format(float(x))  # noqa: E731
+    band = lm.get(f"transmission_error_band_{unit}")
+    html = (f"<p>Lost motion at {output} (the input held, how far {output} moves freely): "
+            f"<b>{v(lm['total'])} {u}</b> — each mesh's backlash {v(lm['backlash'])} {u} and the bores' "
+            f"play {v(lm['bores'])} {u} (running clearance {2 * lm['radial_play_mm']:g} mm diametral; "
+            f"docs/tolerance.md, What play costs).{(' ' + note) if note else ''}</p>")
+    if "worst_case" in lm:
+        html += (f"<p>Over prints at the printer's ±{lm['accuracy_mm']:g} mm (the tolerance model's features, "
+                 f"{lm['prints']:,} prints): worst case <b>{v(lm['worst_case'])} {u}</b> (every feature at its limit, "
+                 f"the way that adds play), 95 % of prints under <b>{v(lm['p95'])} {u}</b>, median {v(lm['p50'])} "
+                 f"{u}.</p>")
+    if band:
+        html += (f"<p>Transmission-error band: {output} stays within {v(band['low'])} … {v(band['high'])} {u} of "
+                 f"its nominal place (width {v(band['width'])} {u}): the measured drive- and coast-flank transmission "
+                 "error of the printed outlines, widened by the bores' share, split between its two sides as the play "
+                 "opens each limit"
+                 + (f"; {v(band['p95_width'])} {u} wide for 95 % of prints, {v(band['worst_case_width'])} {u} at worst"
+                    if "p95_width" in band else "") + ".</p>")
+    rows = [[r["share"] + (f" (×{r['count']})" if r["count"] > 1 else ""),
+             "backlash" if r["kind"] == "backlash" else "radial play", f"{r['mm']:.3f}", v(r["at_output"])]
+            for r in lm.get("shares", [])]
+    return html + R.table(["from", "what", "mm", f"at {output} {u}"], rows, left=2)
 
 
 def bill_text(head: str, man: dict, dest, seconds: float) -> str:

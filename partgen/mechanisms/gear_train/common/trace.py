@@ -80,6 +80,10 @@ def trace_text(spec, trace: Trace, folder) -> str:
         band = lm["transmission_error_band_arcmin"]
         lines.append(f"  lost motion at the output {lm['total']:.1f} arcmin (backlash {lm['backlash']:.1f}, bores' play "
                      f"{lm['bores']:.1f}); output within {band['low']:.1f}…{band['high']:.1f} arcmin of nominal")
+        if "worst_case" in lm:
+            lines.append(f"  over prints (±{lm['accuracy_mm']:g} mm): lost motion worst case {lm['worst_case']:.1f} arcmin, "
+                         f"95 % of prints under {lm['p95']:.1f} (median {lm['p50']:.1f}); transmission-error band "
+                         f"{band['p95_width']:.1f} arcmin wide for 95 % of prints, {band['worst_case_width']:.1f} at worst")
     if folder:
         lines.append(f"plots: {folder}/{', '.join(trace.files)}")
     return "\n".join(lines)

@@ -17,7 +17,7 @@ face or a set screw through its plate, out to its rim between two pins.
 
 Files by role: ``resolve.py`` (the spec, the design findings), ``kit.py`` (parts, poses, the manifest's
 design), ``motion.py`` (the carrier turned by the sun on the printed sections: the check's and the
-trace's), ``checks.py`` (check), ``trace.py`` (trace), ``tolerance.py``, ``report.py`` (report sections,
+trace's), ``checks.py`` (check), ``trace.py`` (trace), ``play.py`` (what play costs at the carrier), ``tolerance.py``, ``report.py`` (report sections,
 subtitle, the bill's heading). Shared with the other sub-slices (``common/``): the hubs and their
 hardware, the fits, the text ``check`` and ``trace`` print for a turning train, the output trace and
 ``trace --csv``, the assembly steps.

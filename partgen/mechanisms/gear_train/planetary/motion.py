@@ -74,21 +74,29 @@ def _contact(fixed, piece, centre, sense: float, reach: float, tol: float, guess
     return free_turn(lambda d: area(d) > 1e-9, lo, hi, tol)
 
 
-def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sections=None) -> dict:
+def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sections=None,
+                   planet_shift: tuple[float, float] = (0.0, 0.0), sun_shift: tuple[float, float] = (0.0, 0.0)) -> dict:
     """The carrier's angle against the sun's from the printed sections, in the carrier's frame (where
     sun, planet and ring turn about fixed axes: the sun drives the planet, the planet the ring): each
     planet turned until it touches the sun, then the ring until it touches the planet; the carrier is
     held by the planet that bears first (the least lag). ``drive``: the sun driving a loaded carrier
     forward; ``coast``: the other flanks. Also the overlap (mm²) of sun/planet and planet/ring
     sections at the nominal angles (every planet, whole outlines: tip and trochoidal interference
-    included). Returns {"nominal", "drive", "coast"} carrier angles (n,) and "overlap_mm2" (n, 2N)."""
+    included). Returns {"nominal", "drive", "coast"} carrier angles (n,), "overlap_mm2" (n, 2N) and
+    "ring_drive", "ring_coast": the ring's angle in the carrier's frame as found with the sun at its
+    nominal place in that frame (n,) (the carrier's angle is worked out from it: the sun held in the
+    world turns in the carrier's frame as the carrier lags). ``planet_shift``: every planet moved off
+    its pin's centre by (radial, tangential) mm in the carrier's frame (tangential: the carrier's sense
+    of turning); ``sun_shift``: the sun's centre moved by (x, y) mm — a body at one place in its bore's
+    play (the lost-motion model's exact check, ``play.py``)."""
     s = kit.params
     secs = sections or _sections(kit)
     zp, zr = s.teeth.planet, s.teeth.ring
     n = len(thetas)
     N = len(s.angles)
     nominal = np.array([s.carrier(float(t)) for t in thetas])
-    out = {"nominal": nominal, "drive": np.empty(n), "coast": np.empty(n), "overlap_mm2": np.zeros((n, 2 * N))}
+    out = {"nominal": nominal, "drive": np.empty(n), "coast": np.empty(n), "overlap_mm2": np.zeros((n, 2 * N)),
+           "ring_drive": np.empty(n), "ring_coast": np.empty(n)}
     reach_p, reach_r = math.pi / zp, math.pi / zr
     h = 3.5 * s.system.module  # the teeth in mesh lie within this of a pitch point
     rr = s.space.pitch_radius
@@ -99,20 +107,25 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
     for gm in s.angles:
         u = np.array([math.cos(gm), math.sin(gm)])
         w2 = box(*(rr * u - h), *(rr * u + h))
-        windows.append(((s.centre_distance * u[0], s.centre_distance * u[1]),
+        pc = s.centre_distance * u + planet_shift[0] * u + planet_shift[1] * np.array([-u[1], u[0]])
+        windows.append(((float(pc[0]), float(pc[1])),
                         box(*(s.sun.pitch_radius * u - h), *(s.sun.pitch_radius * u + h)), w2, w2.buffer(grow_r)))
     # what both senses share at each angle: the sun's flanks in each window, each planet at its
     # nominal angle and the part of it that meets the sun
+    # a planet moved t along its tangent starts turned t / r_p (its sun side back in the middle of the sun
+    # mesh's backlash), the ring 2t / r_r (the planet's ring side moved 2t): each search starts free
+    t_p = planet_shift[1]
+    start_p, start_r = t_p / s.planet.pitch_radius, 2 * t_p / rr
     shared = []
     for k, th in enumerate(thetas):
         c = nominal[k]
-        sun = _place(secs["sun"], th - c, (0.0, 0.0))
-        ring0 = _place(secs["ring"], s.ring_phase - c, (0.0, 0.0))
+        sun = _place(secs["sun"], th - c, sun_shift)
+        ring0 = _place(secs["ring"], s.ring_phase - c + start_r, (0.0, 0.0))
         shapely.prepare(sun)  # indexed once per angle: each planet is tested against it
         shapely.prepare(ring0)
         row = []
         for i, (pc, w1, w2, _) in enumerate(windows):
-            phi = s.planet_angle(i, float(th)) - c  # nominal, carrier frame
+            phi = s.planet_angle(i, float(th)) - c + start_p  # nominal, carrier frame
             planet = _place(secs["planet"], phi, pc)
             # whole outlines: tip and trochoidal interference anywhere
             out["overlap_mm2"][k, i] = sun.intersection(planet).area if sun.intersects(planet) else 0.0
@@ -133,10 +146,17 @@ def turn_planetary(kit: PlanetaryKit, thetas: np.ndarray, tol: float = 1e-7, sec
                 last[i, 0] = _contact(fixed, piece, pc, sense, reach_p, tol, last.get((i, 0)))
                 phi_act = phi + sense * last[i, 0]
                 planet_act = shapely.intersection(_place(secs["planet"], phi_act, pc), w2)
-                ring_nom = s.ring_phase - c + (zp / zr) * (phi_act - phi)
+                ring_nom = s.ring_phase - c + start_r + (zp / zr) * (phi_act - phi)
                 ring = shapely.intersection(_place(secs["ring"], ring_nom, (0.0, 0.0)), w2_grown)
                 last[i, 1] = _contact(planet_act, ring, (0.0, 0.0), sense, reach_r, tol, last.get((i, 1)))
                 rings.append(ring_nom + sense * last[i, 1])
             # the carrier is held by the planet that bears first: the ring's least lag
-            out[key][k] = s.ring_phase - (min(rings) if sense > 0 else max(rings))
+            ring = min(rings) if sense > 0 else max(rings)
+            out[f"ring_{key}"][k] = ring
+            # the sun is held in the world, not in the carrier's frame: a carrier behind its nominal angle by
+            # δ turns the sun (and the ring) forward by δ in that frame, and the planets carry the sun's turn
+            # to the ring as −z_s/z_r of it; the ring found with the sun at its nominal place therefore sits
+            # (1 + z_s/z_r) δ off: δ = (ring_phase − ring − c) · z_r / (z_s + z_r) (exact for teeth that
+            # transmit uniformly; tests/mechanisms/gear_train/test_planetary_play.py places the sun there)
+            out[key][k] = c + (s.ring_phase - ring - c) * zr / (s.teeth.sun + zr)
     return out

@@ -1,4 +1,5 @@
-"""The planetary set's report sections (design, trace, check), its subtitle and the bill's heading."""
+"""The planetary set's report sections (design, trace, what play costs, check), its subtitle and the bill's
+heading."""
 
 from __future__ import annotations
 
@@ -27,7 +28,14 @@ def report_sections(spec: PlanetarySpec, kit: PlanetaryKit, result: Result, trac
              f'turn; measured ratio {st["ratio_measured"]:.5f}, transmission error '
              f'{st["transmission_error_arcmin"]["peak_to_peak"]:.2f} arcmin peak to peak, backlash at the carrier '
              f'{st["backlash_arcmin"]["min"]:.1f}–{st["backlash_arcmin"]["max"]:.1f} arcmin.</p>')
-    return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")), ("Check", check)]
+    sections = [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error"))]
+    lm = st.get("lost_motion_arcmin")
+    if lm:
+        sections.append(("What play costs", common.lost_motion_html(
+            lm, "arcmin", "the carrier", "The sun held, each planet lets the carrier turn through its two meshes' "
+            "backlash over r_sun + r_ring and twice its pin's play over the planets' radius; the sun and the "
+            "carrier float on their shafts and share the load out among the planets: they add none.")))
+    return sections + [("Check", check)]
 
 
 def subtitle(spec: PlanetarySpec) -> str:

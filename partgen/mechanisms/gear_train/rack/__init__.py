@@ -15,7 +15,8 @@ and the rail are raised by the hub's height b).
 
 Files by role: ``resolve.py`` (the spec, the design findings), ``kit.py`` (parts, poses, the manifest's
 design), ``motion.py`` (the rack driven by the pinion on their printed sections: the check's and the
-trace's), ``checks.py`` (check and its text), ``trace.py`` (trace and its text), ``tolerance.py``,
+trace's), ``checks.py`` (check and its text), ``trace.py`` (trace and its text), ``play.py`` (what play costs at
+the rack), ``tolerance.py``,
 ``report.py`` (report sections, subtitle, the bill's heading). Shared with the other sub-slices
 (``common/``): the hubs and their hardware, the fits, ``trace --csv``, the assembly steps.
 """

@@ -28,11 +28,14 @@ def _place(geom, angle: float, at) -> object:
     return shapely.transform(geom, lambda p: p @ R.T + np.asarray(at))
 
 
-def turn_rack(kit: RackKit, thetas: np.ndarray, tol: float = 1e-6) -> dict:
+def turn_rack(kit: RackKit, thetas: np.ndarray, tol: float = 1e-6, pinion_at: tuple[float, float] = (0.0, 0.0),
+              rack_dy: float = 0.0) -> dict:
     """Over pinion angles ``thetas`` (n,) rad, from the printed sections: the rack's x (mm) when the
     pinion drives it (``drive``: the rack found moved back from its nominal place until it touches,
     the pinion turning forward; ``coast``: the other flanks), nominal x, and the overlap (mm²) at
-    the nominal place."""
+    the nominal place. ``pinion_at``: the pinion's centre moved to (x, y) mm (in its bore's play);
+    ``rack_dy``: the rack moved by that along y (towards its rail: negative) — the lost-motion
+    model's exact check (``play.py``)."""
     s = kit.params
     pin, rack = _sections(kit)
     m = s.system.module
@@ -41,9 +44,9 @@ def turn_rack(kit: RackKit, thetas: np.ndarray, tol: float = 1e-6) -> dict:
     out = {"nominal": nominal, "drive": np.empty(len(thetas)), "coast": np.empty(len(thetas)),
            "overlap_mm2": np.zeros(len(thetas))}
     for i, t in enumerate(thetas):
-        P = shapely.intersection(_place(pin, -math.pi / 2 + float(t), (0.0, 0.0)), window)
+        P = shapely.intersection(_place(pin, -math.pi / 2 + float(t), pinion_at), window)
         shapely.prepare(P)
-        piece = shapely.intersection(_place(rack, 0.0, (nominal[i], s.pitch_line)), window.buffer(2 * m))
+        piece = shapely.intersection(_place(rack, 0.0, (nominal[i], s.pitch_line + rack_dy)), window.buffer(2 * m))
 
         def area(d: float) -> float:
             q = shapely.affinity.translate(piece, d)

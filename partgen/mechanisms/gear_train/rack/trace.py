@@ -1,6 +1,6 @@
 """The rack and pinion's trace: the rack's travel against the pinion's angle over the travel, from the
 printed sections (transmission error in µm at the rack, the measured mm per radian, the backlash),
-and the text ``trace`` prints."""
+what play costs at the rack (``play.py``), and the text ``trace`` prints."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ from ..common import KIND
 from ..common.trace import figure
 from .kit import RackKit
 from .motion import turn_rack
+from .play import lost_motion
 from .resolve import RackSpec
 
 __all__ = ["trace", "trace_text"]
@@ -30,7 +31,9 @@ def trace(spec: RackSpec, kit: RackKit, samples: int | None, out: Path | None) -
              "ratio_measured_error": float(slope / spec.pinion.pitch_radius - 1),
              "transmission_error_um": {"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
              "backlash_mm": {"min": float(lash.min()), "max": float(lash.max()), "mean": float(lash.mean())},
-             "max_overlap_mm2": float(turned["overlap_mm2"].max())}
+             "max_overlap_mm2": float(turned["overlap_mm2"].max()),
+             "lost_motion_mm": lost_motion(spec, kit, turned["drive"] - turned["nominal"],
+                                           turned["coast"] - turned["nominal"])}
     files = []
     if out is not None:
         (out / "transmission.png").write_bytes(figure(spec, thetas, te, lash * 1000, "µm at the rack"))
@@ -45,4 +48,13 @@ def trace_text(spec: RackSpec, trace: Trace, folder) -> str:
              f"{s['samples']} angles over the travel",
              f"  transmission error {s['transmission_error_um']['peak_to_peak']:.2f} µm peak to peak at the "
              f"rack; backlash {s['backlash_mm']['min']:.3f}–{s['backlash_mm']['max']:.3f} mm"]
+    lm = s.get("lost_motion_mm")
+    if lm:
+        band, at = lm["transmission_error_band_mm"], lm["pinion_arcmin"]
+        lines += [f"  lost motion at the rack {lm['total']:.3f} mm ({at['total']:.1f} arcmin at the pinion; backlash "
+                  f"{lm['backlash']:.3f}, bores' play {lm['bores']:.3f}); rack within {1000 * band['low']:.0f}…"
+                  f"{1000 * band['high']:.0f} µm of nominal",
+                  f"  over prints (±{lm['accuracy_mm']:g} mm): lost motion worst case {lm['worst_case']:.3f} mm, 95 % of "
+                  f"prints under {lm['p95']:.3f} (median {lm['p50']:.3f}); transmission-error band "
+                  f"{1000 * band['p95_width']:.0f} µm wide for 95 % of prints, {1000 * band['worst_case_width']:.0f} at worst"]
     return "\n".join(lines + ([f"plots: {folder}/{', '.join(trace.files)}"] if folder else []))

@@ -41,12 +41,17 @@ def _place(geom, angle: float, centre) -> object:
     return shapely.transform(geom, lambda p: p @ R.T + centre)
 
 
-def turn_train(kit: TrainKit, thetas: np.ndarray, sections: dict | None = None, tol: float = 1e-7) -> dict:
+def turn_train(kit: TrainKit, thetas: np.ndarray, sections: dict | None = None, tol: float = 1e-7,
+               shifts: dict | None = None) -> dict:
     """Over input angles ``thetas`` (n,) rad: every shaft's angle (rad) with each driven gear turned
     from its nominal angle until it touches its driver, backward against its motion (``drive``: the
     input drives a loaded train forward) and forward (``coast``: the other flanks, as when the input
     turns back). Returns {"drive": (n, shafts), "coast": (n, shafts), "nominal": (n, shafts),
-    "overlap_mm2": (n, stages) at the nominal angles}. Bisection to ``tol`` rad."""
+    "overlap_mm2": (n, stages) at the nominal angles}. Bisection to ``tol`` rad. ``shifts``: {shaft index:
+    (x, y) mm}, that shaft's body (its gears) moved off its axis by so much — a body at one place in its
+    bore's play (the lost-motion model's exact check, ``play.py``); each driven gear's search then starts
+    turned by its centre's shift relative to its driver's along the mesh's tangent over its operating
+    pitch radius (back in the middle of its backlash)."""
     s = kit.params
     secs = sections or printed_sections(kit)
     n = len(thetas)
@@ -60,6 +65,11 @@ def turn_train(kit: TrainKit, thetas: np.ndarray, sections: dict | None = None, 
             shd, shn = s.shafts[gd.shaft], s.shafts[gn.shaft]
             cd, cn = np.array(shd.centre), np.array(shn.centre)
             u = (cn - cd) / np.linalg.norm(cn - cd)
+            moved = shifts or {}
+            dd, dn = (np.asarray(moved.get(sh.index, (0.0, 0.0)), float) for sh in (shd, shn))
+            cd, cn = cd + dd, cn + dn
+            r_wn = mesh.centre_distance * gn.spec.teeth / (gd.spec.teeth + gn.spec.teeth)
+            start = float((dn - dd) @ np.array([-u[1], u[0]])) / r_wn
             pitch_pt = cd + u * mesh.centre_distance * gd.spec.teeth / (gd.spec.teeth + gn.spec.teeth)
             ang = math.atan2(u[1], u[0])
             inner = shapely.affinity.rotate(box(-2.5 * m, -3 * m, 2.5 * m, 3 * m), ang, origin=(0, 0), use_radians=True)
@@ -71,7 +81,7 @@ def turn_train(kit: TrainKit, thetas: np.ndarray, sections: dict | None = None, 
             for i in range(n):
                 drv = shapely.intersection(_place(secs[gd.name], A[i, shd.index], cd), inner)
                 shapely.prepare(drv)
-                phi = shn.phase + ratio * (A[i, shd.index] - shd.phase)
+                phi = shn.phase + ratio * (A[i, shd.index] - shd.phase) + start
                 piece = shapely.intersection(_place(secs[gn.name], phi, cn), outer)
 
                 def area(d: float) -> float:

@@ -16,22 +16,13 @@ __all__ = ["report_sections", "subtitle", "bill_text", "lost_motion_html"]
 
 def lost_motion_html(lm: dict, spec) -> str:
     """The report's "What play costs" of a train: the output's lost motion (arc-minutes) from each
-    mesh's backlash and the bores' play, and the transmission-error band (play.lost_motion)."""
-    from ....export import report as R
-
-    band = lm.get("transmission_error_band_arcmin")
-    rows = [[m["mesh"], f"{m['backlash_mm']:.3f}", f"{m['backlash_arcmin']:.2f}", f"{m['bores_arcmin']:.2f}"]
-            for m in lm["meshes"]]
-    return (f"<p>Lost motion at the output (the input held, how far the output turns freely): "
-            f"<b>{lm['total']:.1f} arcmin</b> — each mesh's backlash {lm['backlash']:.1f} arcmin and the bores' "
-            f"play {lm['bores']:.1f} arcmin (running clearance {2 * lm['radial_play_mm']:g} mm diametral, taken up "
-            "along each mesh's line of centres), referred to the output through the shafts' speeds "
-            "(docs/tolerance.md, What play costs).</p>"
-            + (f"<p>Transmission-error band: the output stays within {band['low']:.1f} … {band['high']:.1f} arcmin of "
-               f"its nominal angle (width {band['width']:.1f} arcmin): the measured drive- and coast-flank transmission "
-               "error of the printed outlines, widened on each side by half the bores' share.</p>" if band else "")
-            + R.table(["mesh", "backlash mm", "backlash at the output arcmin", "bores at the output arcmin"], rows,
-                      left=1))
+    mesh's backlash and each body's play in its bore, over prints, and the transmission-error band
+    (play.lost_motion)."""
+    return common.lost_motion_html(
+        lm, "arcmin", "the output", "The input held, each mesh lets its driven gear turn through its backlash, "
+        "referred to the output through the shafts' speeds; each body may sit anywhere in its bore, and one "
+        "place opens the forward limit, another the backward one: a gear in one mesh adds twice its radial play "
+        "over its driven gear's base radius.")
 
 
 def report_sections(spec: TrainSpec, kit: TrainKit, result: Result, trace: Trace, files: dict

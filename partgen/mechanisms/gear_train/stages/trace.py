@@ -24,4 +24,4 @@ def trace(spec: TrainSpec, kit: TrainKit, samples: int | None, out: Path | None)
     o = len(spec.shafts) - 1
     drive, nominal, coast = turned["drive"][:, o], turned["nominal"][:, o], turned["coast"][:, o]
     return output_trace(spec, thetas, drive, nominal, coast, turned["overlap_mm2"], f"shaft {len(spec.shafts) - 1}",
-                        out, lost_motion)
+                        out, lambda sp, te, coast: lost_motion(sp, kit, te, coast))
