@@ -657,8 +657,9 @@ def crossed(tmp: Path) -> dict:
 
     from partgen import pipeline
     from partgen.geometry.solid import mesh_arrays
-    from partgen.mechanisms.crossed_helical.kit import build_crossed, gear_spec
-    from partgen.mechanisms.crossed_helical.mechanism import mesh_overlaps
+    from partgen.mechanisms.crossed_helical.contact import mesh_overlaps
+    from partgen.mechanisms.crossed_helical.kit import build_crossed
+    from partgen.mechanisms.crossed_helical.resolve import gear_spec
     from partgen.testing import measure_spur_gear, mesh_problems, section_outline
 
     def float32(solid) -> trimesh.Trimesh:

@@ -128,6 +128,9 @@ SHARED = {
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_crossed_helical]": "test_crossed_helical.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[gear_train_worm]": "test_worm.py",
     "test_manifest_schema.py::test_manifest_holds_the_schema[bevel_mitre]": "test_bevel.py",
+    # the kinds the solid pair kernel serves, each test with its kind's file (the shipped kit built there)
+    "test_solid_pairs.py[bevel_mitre]": "test_bevel.py",
+    "test_solid_pairs.py[gear_train_crossed_helical]": "test_crossed_helical.py",
     "test_tolerance_wrist.py": "test_wrist.py",  # the wrist kits
     "test_tolerance_bennett.py": "test_bennett_cli.py",  # the shipped Bennett kit
     # test_shipped_jam checks every shipped kit: each where the same kit is built already
@@ -148,7 +151,8 @@ FIRST = ("test_contract.py", "test_bennett_cli.py", "test_wrist.py", "test_check
 def _group(nodeid: str) -> str:
     path = nodeid.split("::", 1)[0]
     file, here = path.rsplit("/", 1)[-1], nodeid.rsplit("/", 1)[-1]
-    return SHARED.get(here, SHARED.get(file, file))
+    param = here.partition("[")[2].split("-")[0].rstrip("]")  # a test's first parameter: file[param] in SHARED
+    return SHARED.get(here, SHARED.get(f"{file}[{param}]", SHARED.get(file, file)))
 
 
 def pytest_collection_modifyitems(config, items):

@@ -91,6 +91,12 @@ def unit_of(target: tuple[str, ...]) -> str:
     return target[0][:-3] if target[0].endswith(".py") else target[0]
 
 
+def _mechanisms_root(name: str) -> bool:
+    """``mechanisms/<name>.py`` is a root module of mechanisms/ (a kernel the kinds share, like
+    ``solid_pair`` or ``autoplay``), not a mechanism's folder."""
+    return PKG.joinpath("mechanisms", f"{name}.py").is_file()
+
+
 def violations() -> list[str]:
     bad = []
     for unit, f in modules():
@@ -111,8 +117,11 @@ def violations() -> list[str]:
                 if u != unit and u not in ALLOWED[unit]:
                     bad.append(f"{where} imports partgen.{'.'.join(t)}")
                 if unit == "mechanisms" and u == "mechanisms" and len(where.parts) > 2 and len(t) > 1 \
-                        and t[1] != where.parts[1]:
+                        and t[1] != where.parts[1] and not _mechanisms_root(t[1]):
                     bad.append(f"{where} imports another mechanism: partgen.{'.'.join(t)}")
+                if unit == "mechanisms" and len(where.parts) == 2 and where.name != "__init__.py" \
+                        and u == "mechanisms" and len(t) > 1 and not _mechanisms_root(t[1]):
+                    bad.append(f"{where} (shared by the kinds) imports a mechanism: partgen.{'.'.join(t)}")
     return bad
 
 
@@ -134,6 +143,8 @@ def test_the_checker_can_fail(tmp_path, monkeypatch):
     (pkg / "core" / "t.py").write_text("from ..design import involute\n")
     (pkg / "mechanisms" / "wrist" / "kit.py").write_text("from ..gear_chain import kit\n")
     (pkg / "mechanisms" / "gear_chain" / "kit.py").write_text("import manifold3d\n")
+    (pkg / "mechanisms" / "gear_chain" / "trace.py").write_text("from .. import shared\nfrom ..shared import f\n")
+    (pkg / "mechanisms" / "shared.py").write_text("from .wrist import kit\n")
     (pkg / "checks" / "c.py").write_text("from ..mechanisms.wrist import kit\n")
     (pkg / "errors.py").write_text("from .pipeline import build\n")
     (pkg / "pipeline.py").write_text("")
@@ -141,8 +152,10 @@ def test_the_checker_can_fail(tmp_path, monkeypatch):
     found = "\n".join(violations())
     for breach in ("design/m.py imports partgen.geometry", "design/m.py imports yaml", "core/t.py imports partgen.design",
                    "mechanisms/wrist/kit.py imports another mechanism", "mechanisms/gear_chain/kit.py imports manifold3d",
-                   "checks/c.py imports partgen.mechanisms", "errors.py imports partgen.pipeline"):
+                   "checks/c.py imports partgen.mechanisms", "errors.py imports partgen.pipeline",
+                   "mechanisms/shared.py (shared by the kinds) imports a mechanism: partgen.mechanisms.wrist"):
         assert breach in found, (breach, found)
+    assert "gear_chain/trace.py" not in found, found  # a kind may call a kernel the kinds share
 
 
 # the kinds and the words only a mechanism knows: its parts, roles and motions
@@ -152,29 +165,40 @@ MECHANISM_WORDS = ("gear_chain", "bennett", "butterfly", "wrist", "gear_pair", "
 SHARED = ("export", "checks", "core", "cli", "pipeline.py", "studies.py")
 
 
+def shared_files(root: Path) -> list[Path]:
+    """The shared code under ``root``: ``SHARED``, and the root modules of mechanisms/ (the kernels the
+    kinds share: ``solid_pair``, ``autoplay``; the registry, ``__init__.py``, lists the kinds by name)."""
+    out = []
+    for name in SHARED:
+        base = root / name
+        out += [base] if base.is_file() else sorted(base.rglob("*.py"))
+    return out + [p for p in sorted((root / "mechanisms").glob("*.py")) if p.name != "__init__.py"]
+
+
 def mechanism_words_in(root: Path) -> list[str]:
     """``file:line: word`` for every mechanism word in the shared code under ``root`` (vendored
     third-party code aside)."""
     import re
     pattern = re.compile("|".join(re.escape(w) for w in MECHANISM_WORDS), re.I)
     found = []
-    for name in SHARED:
-        base = root / name
-        for path in ([base] if base.is_file() else sorted(base.rglob("*.py"))):
-            if "vendor" in path.parts:
-                continue
-            for n, line in enumerate(path.read_text().splitlines(), 1):
-                for m in pattern.finditer(line):
-                    found.append(f"{path.relative_to(root)}:{n}: {m.group(0)}")
+    for path in shared_files(root):
+        if "vendor" in path.parts:
+            continue
+        for n, line in enumerate(path.read_text().splitlines(), 1):
+            for m in pattern.finditer(line):
+                found.append(f"{path.relative_to(root)}:{n}: {m.group(0)}")
     return found
 
 
 def test_shared_code_names_no_mechanism():
-    """export/, checks/, core/, cli/, pipeline.py and studies.py know no kind: no kind, part, role
-    or motion of a mechanism is named there, in code or in prose (the registry's kinds come in as
-    data; a mechanism says its own texts)."""
+    """export/, checks/, core/, cli/, pipeline.py, studies.py and the root modules of mechanisms/
+    (the kernels the kinds share, e.g. solid_pair.py) know no kind: no kind, part, role or motion of
+    a mechanism is named there, in code or in prose (the registry's kinds come in as data; a
+    mechanism says its own texts)."""
     from partgen.mechanisms import KINDS
     assert set(KINDS) <= {w for w in MECHANISM_WORDS} | {"bennett_butterfly"}
+    assert PKG / "mechanisms" / "solid_pair.py" in shared_files(PKG)
+    assert PKG / "mechanisms" / "__init__.py" not in shared_files(PKG)
     assert mechanism_words_in(PKG) == []
 
 
@@ -187,3 +211,8 @@ def test_the_word_check_can_fail(tmp_path):
         elif name.endswith(".py"):
             (tmp_path / name).write_text("")
     assert mechanism_words_in(tmp_path) == ["checks/x.py:2: belt", "checks/x.py:2: belt"]
+    # a kernel the kinds share (a root module of mechanisms/) that names a kind is found; the registry is not
+    (tmp_path / "mechanisms").mkdir()
+    (tmp_path / "mechanisms" / "__init__.py").write_text('KINDS = ("bevel",)\n')
+    (tmp_path / "mechanisms" / "pair.py").write_text("def f(spec):\n    return spec.kind == 'bevel'\n")
+    assert mechanism_words_in(tmp_path) == ["checks/x.py:2: belt", "checks/x.py:2: belt", "mechanisms/pair.py:2: bevel"]

@@ -11,7 +11,7 @@ names none: ``gears.backlash_per_gear_mm`` as a backlash). Two roles:
   that much larger does (``design.allocate.hole_slope``: the fit's radial gap by half of it, and the
   meshes the bores' play is credited to); grid ``RUNNING_STEP_MM`` (0.01 mm diametral) from one
   step to ``RUNNING_MAX_MM``; built at ``AUTO_RUNNING_START_MM``.
-* ``radial``: a radial clearance (the wrist's sockets over its domes): ``running`` in radial mm, at
+* ``radial``: a radial clearance (a kind's sockets over its domes): ``running`` in radial mm, at
   half its grid, start and most. A radial clearance Δ larger is each cavity it sizes printed 2Δ
   larger, as a diameter (``design.allocate.radial_slope``: twice the cavities' coefficients).
 
@@ -195,7 +195,7 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         for k, own in per_unit["own"].items():
             design_values[k] = {"default": values[k], **own}
     alloc = {"key": ", ".join(keys), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
-             "meshes": len({m.unit for m in model.margins if m.what.startswith("backlash")}),  # a bevel: heel and toe
+             "meshes": len({m.unit for m in model.margins if m.what.startswith("backlash")}),  # one unit: a heel and a toe margin
              "joints": sum(m.group == "joint" and m.what == "radial gap" for m in model.margins),
              "limited_by": limits or None, "credits": model.credits, "per_unit": per_unit}
     if per_unit["adopted"]:  # the kit is built with the allocation: its figures are the headline

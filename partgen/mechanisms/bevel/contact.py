@@ -16,13 +16,14 @@ import numpy as np
 
 from ...checks.contact3d import contact_angles as _contact_angles, measured_ratio as _measured_ratio
 from ...checks.contact3d import overlaps_over_pitch
-from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern
+from ...checks.contact_pattern import CONTACT_GAP_MM, Face, contact_pattern, pattern_finding
 from ...geometry.helical import sector_prism
+from ..solid_pair import SolidPair
 from .kit import BevelKit
 from .resolve import BevelSpec
 
 __all__ = ["WEDGE_PITCHES", "mesh_overlaps", "designed_backlash", "contact_angles", "measured_ratio",
-           "contact_along_face"]
+           "contact_along_face", "PAIR"]
 
 WEDGE_PITCHES = 2  # each gear is cut to ± this many of its pitches round the pitch line (contact ratio < 2)
 
@@ -91,3 +92,15 @@ def contact_along_face(kit: BevelKit, thetas, play: dict) -> dict:
     p = contact_pattern(lambda t: _near_mesh(kit, t), thetas, play["ahead"], play["overlap_mm3"],
                         CONTACT_GAP_MM / s.gear2.pitch_radius, [face], reach)[0]
     return {"gap_mm": CONTACT_GAP_MM, "gap_along": "gear 2's heel pitch circle", **p}
+
+
+def _contact_finding(spec: BevelSpec, contact: dict):
+    """The contact along the face, toe to heel, judged (``checks.contact_pattern.pattern_finding``)."""
+    return pattern_finding(contact, ("gear1", "gear2"), "gears.teeth",
+                           hint="the flanks are not conjugate along the face (the solids or their poses)")
+
+
+PAIR = SolidPair(contact_angles, measured_ratio, contact_along_face, lambda spec: spec.gear2.pitch_radius,
+                 designed_backlash, "gear 2's heel pitch circle", lambda contact: [contact], _contact_finding)
+"""The pair as the shared check and trace see it (``mechanisms.solid_pair``): play measured along
+gear 2's heel pitch circle, one contact pattern (toe to heel)."""

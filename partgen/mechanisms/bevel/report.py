@@ -3,13 +3,12 @@ check), its subtitle and the assembly steps."""
 
 from __future__ import annotations
 
-import html
-
 import math
 
-from ...checks.contact_pattern import pattern_text
 from ...core.findings import Result
 from ...core.protocol import Trace
+from .. import solid_pair
+from .contact import PAIR
 from .kit import BevelKit, design_numbers
 from .resolve import BevelSpec
 
@@ -44,12 +43,7 @@ def report_sections(spec: BevelSpec, kit: BevelKit, result: Result, trace: Trace
            f"{d['shaft_angle_deg']:g}°, cone distance {d['cone_distance_mm']:.3f} mm, face width "
            f"{d['face_width_mm']:g} mm, contact ratio {d['contact_ratio']:.2f}; ratio {d['ratio']}. Teeth: "
            f"{d['tooth_form']}.</p>")
-    f, s = result.figures, trace.stats
-    check = (f'<p class="{"ok" if result.ok else "fail"}">{f["samples"]} phases over a tooth pitch, exact 3-D: '
-             f'largest overlap {f["max_overlap_mm3"]:.6f} mm³, backlash {f["backlash_mm"]["min"]:.3f}–'
-             f'{f["backlash_mm"]["max"]:.3f} mm; ratio measured {s["ratio_measured"]:.9f} '
-             f'(relative error {s["ratio_relative_error"]:.1e}).</p>'
-             f'<p>{html.escape(pattern_text(f["contact_along_face"]).capitalize())}.</p>')
+    check = solid_pair.check_html(PAIR, result, trace)
     return [("Design", design), ("Trace", R.img(files["transmission.png"], "transmission error")),
             ("Check", check)]
 

@@ -8,6 +8,7 @@ from typing import Annotated, ClassVar, Literal
 from pydantic import Field, model_validator
 
 from ...config.schema import DesignHeader, PlateChecks, Gap, Length, Strict, ToleranceTarget
+from ..solid_pair import PairFrame
 
 __all__ = ["BevelDesign"]
 
@@ -51,13 +52,9 @@ class BevelShafts(Strict):
     the printer profile's measured press fit."""
 
 
-class BevelFrame(Strict):
-    base_thickness_mm: Length = 5.0
-    """Thickness of the base plate carrying gear 1's post and gear 2's block."""
-    margin_mm: Length = 4.0
-    """How far the base reaches beyond gear 1's heel and gear 2's block."""
-    axial_gap_mm: Length = 0.5
-    """Gap between a gear's hub and the base or the block (also gear 2's heel above the base)."""
+class BevelFrame(PairFrame):
+    """The shared frame (``mechanisms.solid_pair.PairFrame``) with one block, and the hubs."""
+
     hub_length_mm: Length = 4.0
     """Length of gear 2's hub behind its back face, along its axis (gear 1's hub reaches down to the base)."""
     block_wall_mm: Length = 4.0

@@ -3,17 +3,19 @@ length in mm, every angle in degrees, clearances diametral."""
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
-from ...config.schema import DesignHeader, PlateChecks, Gap, Length, Strict
+from ...config.schema import DesignHeader, PlateChecks, Gap, Length, Strict, ToleranceTarget
+from ..solid_pair import PairFrame
 
 __all__ = ["CrossedHelicalDesign"]
 
 Helix = Annotated[float, Field(ge=3.0, le=85.0)]
 Starts = Annotated[int, Field(ge=1, le=1000)]
 Fit = Literal["printer"] | Annotated[float, Field(ge=-1, le=5)]
+Running = Literal["printer", "auto"] | Annotated[float, Field(ge=-1, le=5)]
 
 
 class CrossedGears(Strict):
@@ -49,25 +51,16 @@ class CrossedGears(Strict):
 class CrossedShafts(Strict):
     diameter_mm: Annotated[list[Length], Field(min_length=2, max_length=2)] = [8.0, 8.0]
     """Diameters of [gear 1's post (upright on the base), gear 2's pin (held in the two blocks)]."""
-    running_clearance_diametral_mm: Fit = "printer"
+    running_clearance_diametral_mm: Running = "printer"
     """Diametral running clearance, a gear's bore minus its post or pin; printer: the printer profile's measured
-    running fit."""
+    running fit; auto: the least that meets tolerance.max_jam_probability on the printer."""
     press_fit_clearance_diametral_mm: Fit = "printer"
     """Diametral clearance of gear 2's pin in its blocks' holes (hole minus pin; negative: interference); printer:
     the printer profile's measured press fit."""
 
 
-class CrossedFrame(Strict):
-    base_thickness_mm: Length = 5.0
-    """Thickness of the base plate carrying gear 1's post and the blocks."""
-    margin_mm: Length = 4.0
-    """How far the base reaches beyond gear 1's tip circle and the blocks."""
-    axial_gap_mm: Length = 0.5
-    """Gap between a gear and the base or a block (also gear 2's tip circle above the base)."""
-    block_wall_mm: Length = 4.0
-    """Material round gear 2's pin in each of its two blocks."""
-    block_thickness_mm: Length = 8.0
-    """Thickness of each block, along gear 2's axis."""
+class CrossedFrame(PairFrame):
+    """The shared frame (``mechanisms.solid_pair.PairFrame``): gear 2's pin held by two blocks."""
 
 
 class CrossedChecks(PlateChecks):
@@ -82,6 +75,7 @@ class CrossedChecks(PlateChecks):
 
 
 class CrossedHelicalDesign(DesignHeader):
+    AUTO_PLAY: ClassVar[dict] = {"shafts.running_clearance_diametral_mm": "running"}  # mechanisms.autoplay
     kind: Literal["crossed_helical"]
     """The mechanism this file designs: `crossed_helical` selects these keys."""
     shaft_angle_deg: Annotated[float, Field(ge=45.0, le=90.0)] = 90.0
@@ -94,6 +88,8 @@ class CrossedHelicalDesign(DesignHeader):
     """The base and the two blocks holding gear 2's pin."""
     checks: CrossedChecks = CrossedChecks()
     """What partgen check holds the kit to."""
+    tolerance: ToleranceTarget = ToleranceTarget()
+    """The jam probability that auto play (shafts.running_clearance_diametral_mm) is chosen for."""
 
     @model_validator(mode="after")
     def _angles(self):

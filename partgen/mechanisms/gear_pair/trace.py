@@ -9,6 +9,7 @@ import numpy as np
 
 from ...core.protocol import Trace
 from ...export.report import transmission_figure
+from ..solid_pair import transmission_csv
 from .checks import sweep
 from .kit import PairKit
 from .resolve import PairSpec
@@ -40,7 +41,7 @@ def trace(kind: str, spec: PairSpec, kit: PairKit, samples: int | None, out: Pat
 
 
 def csv(header: str, trace: Trace) -> str:
-    return header + "".join(f"{a:.9f},{b:.9f},{c:.9f},{d:.6f}\n" for a, b, c, d in trace.data)
+    return transmission_csv(header, trace)
 
 
 def trace_text(spec: PairSpec, trace: Trace, folder) -> str:

@@ -1,12 +1,12 @@
 """A crossed helical pair on skew shafts (kind crossed_helical): the kinematics (teeth parallel at the
-pitch point exactly when Σ = β1 + β2, the ratio z2/z1, the sliding), the shipped 90° pair built,
-checked exactly in 3-D (0 mm³ at the designed backlash, overlapping with the backlash made negative),
-its flanks against the analytic helicoid (sections of the float32 mesh vs the turned transverse
-involute, µm), traced (ratio within 1e-6), every STL one closed shell, and bad input."""
+pitch point exactly when Σ = β1 + β2, the ratio z2/z1, the sliding), the shipped 90° pair's flanks
+against the analytic helicoid (sections of the float32 mesh vs the turned transverse involute, µm),
+a 60° pair. The shipped pair's exact check (0 mm³ at the designed backlash, overlapping with the
+backlash made negative), trace, shells and bad input: with the mitre pair's in
+tests/mechanisms/test_solid_pairs.py."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from pathlib import Path
 
@@ -16,12 +16,11 @@ import trimesh
 import yaml
 from shapely import contains_xy
 
-from partgen.cli.main import main
 from partgen.design.crossed_helical import crossed_pair
 from partgen.geometry.solid import mesh_arrays
-from partgen.mechanisms.crossed_helical.kit import build_crossed, gear_spec
-from partgen.mechanisms.crossed_helical.mechanism import MECHANISM, contact_angles, mesh_overlaps
-from partgen.testing import measure_spur_gear, mesh_problems, section_outline
+from partgen.mechanisms.crossed_helical.contact import contact_angles, designed_backlash, mesh_overlaps
+from partgen.mechanisms.crossed_helical.kit import build_crossed
+from partgen.testing import measure_spur_gear, section_outline
 
 ROOT = Path(__file__).resolve().parents[3]
 CFG = ROOT / "configs" / "gear_train_crossed_helical.yaml"
@@ -70,29 +69,6 @@ def shipped(kit_of):
     return kit_of("gear_train_crossed_helical")
 
 
-def test_shipped_pair_checks_exactly_in_3d(shipped):
-    spec, kit = shipped.loaded.spec, shipped.kit
-    result = MECHANISM.check(spec, kit, 6)
-    assert result.ok, [f.message for f in result.findings if f.severity == "fail"]
-    f = result.figures
-    assert f["max_overlap_mm3"] == 0.0
-    # the backlash along gear 2's pitch circle is the designed (0.1 + 0.1) mm, to the facets' few µm
-    assert f["backlash_mm"]["designed"] == pytest.approx(0.2)
-    assert 0.2 <= f["backlash_mm"]["min"] <= f["backlash_mm"]["max"] <= 0.2 + 0.006
-    assert f["closest_mm"]["gear2-base"] >= spec.gap - 1e-3
-
-
-def test_the_exact_check_fails_with_negative_backlash_or_nudged(shipped):
-    spec, kit = shipped.loaded.spec, shipped.kit
-    assert mesh_overlaps(kit, 3, nudge=0.02).max() > 1.0  # gear 2 turned 0.02 rad (0.4 mm): teeth in teeth
-    tight = dataclasses.replace(spec, gear1=gear_spec(spec.pair, 0, -0.1, spec.tol),
-                                gear2=gear_spec(spec.pair, 1, -0.1, spec.tol))
-    tight_kit = build_crossed(tight)
-    vols = mesh_overlaps(tight_kit, 3)
-    assert (vols > 0.01).all(), vols
-    assert not MECHANISM.check(tight, tight_kit, 3).ok
-
-
 def test_flanks_are_the_helicoid(shipped):
     """Each gear's mesh (float32, as the STL stores it) sectioned at three heights: the flanks are
     the transverse involute within a µm, and tooth 0's centre has turned by the helix."""
@@ -117,52 +93,6 @@ def test_flanks_are_the_helicoid(shipped):
     assert worst < 2e-3, worst  # mm: 2 µm
 
 
-def test_trace_ratio_and_transmission_error(shipped):
-    stats = MECHANISM.trace(shipped.loaded.spec, shipped.kit, 4, None).stats
-    assert stats["ratio_design"] == 0.5 and stats["ratio_relative_error"] < 1e-6
-    assert 0 < stats["transmission_error_mm"]["peak_to_peak"] < 0.02
-    assert stats["instantaneous_ratio_deviation"] < 0.02
-
-
-def test_every_stl_is_one_closed_shell(shipped):
-    man = shipped.manifest
-    assert {p["name"] for p in man["parts"]} == {"base", "gear1", "gear2", "pin2"}
-    for p in man["parts"]:
-        mesh = trimesh.load(shipped.dest / p["file"], file_type="stl")
-        assert not mesh_problems(mesh, (250.0, 210.0, 220.0)), (p["name"], mesh_problems(mesh))
-        assert len(mesh.split(only_watertight=False)) == 1, p["name"]
-
-
-def test_crossed_contact_angles_find_the_flanks(shipped):
-    """Turning gear 2 ahead and back from nominal finds the two flanks: their sum is the backlash,
-    and the overlap is zero between them and positive just beyond."""
-    spec, kit = shipped.loaded.spec, shipped.kit
-    c = contact_angles(kit, [0.0], 1e-6)
-    ahead, behind = float(c["ahead"][0]), float(c["behind"][0])
-    assert ahead > 0 > behind
-    assert mesh_overlaps(kit, 1, nudge=ahead * 0.98)[0] == 0.0
-    assert mesh_overlaps(kit, 1, nudge=ahead + 2e-4)[0] > 0.0
-    assert mesh_overlaps(kit, 1, nudge=behind - 2e-4)[0] > 0.0
-
-
-@pytest.mark.parametrize("change,key,fragment", [
-    ({"gears": {"helix_angle_deg": [45.0, 40.0]}}, "gears.helix_angle_deg", "add up to"),
-    ({"gears": {"teeth": [30, 4]}}, "gears.teeth[1]", "undercut"),
-    ({"shafts": {"diameter_mm": [8.0, 40.0]}}, "shafts.diameter_mm[1]", "wall"),
-])
-def test_bad_input_names_the_key(tmp_path, capsys, change, key, fragment):
-    d = yaml.safe_load(CFG.read_text())
-    for k, v in change.items():
-        d[k] = {**d[k], **v}
-    p = tmp_path / "bad.yaml"
-    p.write_text(yaml.safe_dump(d, sort_keys=False))
-    dest = tmp_path / "kit"
-    assert main(["build", str(p), "-o", str(dest), "-q"]) == 2
-    err = capsys.readouterr().err
-    assert key in err and fragment in err and "Traceback" not in err, err
-    assert not dest.exists()
-
-
 def test_a_60_degree_pair_meshes_with_its_designed_backlash(tmp_path):
     """Shafts at 60° (30° + 30°): the same model, another frame; the blocks stand clear of the slanted
     gear (the check's frame test) and the backlash measured in 3-D is the designed one."""
@@ -178,7 +108,7 @@ def test_a_60_degree_pair_meshes_with_its_designed_backlash(tmp_path):
     assert mesh_overlaps(kit, 2).max() == 0.0
     c = contact_angles(kit, [0.0], 1e-5)
     backlash = float(c["ahead"][0] - c["behind"][0]) * spec.pair.pitch_radius(1)
-    assert MECHANISM._designed_backlash(spec) == pytest.approx(0.2)
+    assert designed_backlash(spec) == pytest.approx(0.2)
     assert 0.2 <= backlash <= 0.206
     from partgen.geometry.measure import intersection
 

@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 
 from partgen.design.tolerance import run_chunk, summarise
-from partgen.mechanisms.crossed_helical.kit import CrossedKit, CrossedSpec
-from partgen.mechanisms.crossed_helical.mechanism import MECHANISM, contact_angles
+from partgen.mechanisms.crossed_helical.contact import contact_angles
+from partgen.mechanisms.crossed_helical.kit import CrossedKit
+from partgen.mechanisms.crossed_helical.mechanism import MECHANISM
+from partgen.mechanisms.crossed_helical.resolve import CrossedSpec
 from partgen.mechanisms.crossed_helical.tolerance import per_backlash
 
 SHIFT_MM = 0.05

@@ -15,8 +15,10 @@ import trimesh
 
 from partgen.design.crossed_helical import ThreadSpec, crossed_pair, efficiency, friction_angle
 from partgen.geometry.solid import mesh_arrays
-from partgen.mechanisms.crossed_helical.kit import build_crossed, gear_spec, is_worm
-from partgen.mechanisms.crossed_helical.mechanism import MECHANISM, contact_angles, mesh_overlaps
+from partgen.mechanisms.crossed_helical.contact import contact_angles, designed_backlash, mesh_overlaps
+from partgen.mechanisms.crossed_helical.kit import build_crossed, locking
+from partgen.mechanisms.crossed_helical.mechanism import MECHANISM
+from partgen.mechanisms.crossed_helical.resolve import gear_spec, is_worm
 from partgen.testing import mesh_problems, section_outline
 
 
@@ -60,11 +62,11 @@ def test_shipped_worm_meshes_exactly_and_locks(worm):
     assert result.ok, [f.message for f in result.findings if f.severity == "fail"]
     f = result.figures
     assert f["max_overlap_mm3"] == 0.0
-    designed = MECHANISM._designed_backlash(spec)
+    designed = designed_backlash(spec)
     assert designed == pytest.approx((0.1 * math.cos(math.radians(85)) + 0.1 * math.cos(math.radians(5)))
                                      / math.cos(math.radians(5)))
     assert designed - 0.003 <= f["backlash_mm"]["min"] <= f["backlash_mm"]["max"] <= designed + 0.006
-    lock = MECHANISM._locking(spec)
+    lock = locking(spec)
     assert lock["lead_angle_deg"] == pytest.approx(5.0) and lock["self_locking"]
     assert worm.manifest["design"]["self_locking"] is True
 
