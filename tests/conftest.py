@@ -9,10 +9,19 @@ from pathlib import Path
 
 import pytest
 
-# partgen remembers its auto choices (core.cache): the tests keep theirs in a folder of their own,
-# one per worker, removed at exit (never the user's ~/.cache/partgen)
-os.environ["PARTGEN_CACHE_DIR"] = _CACHE = tempfile.mkdtemp(prefix="partgen-test-cache-")
-atexit.register(shutil.rmtree, _CACHE, True)
+# partgen remembers its auto choices and searched layouts (core.cache): the tests keep theirs in a
+# folder of their own (never the user's ~/.cache/partgen), one per test run that its xdist workers
+# share (a worker's parent is the run's main process, which removes it at exit; its writes are atomic
+# and its keys hold everything a decision depends on, so a worker reads only what it would compute)
+if os.environ.get("PYTEST_XDIST_WORKER"):
+    _CACHE = os.path.join(tempfile.gettempdir(), f"partgen-test-cache-{os.getppid()}")
+    os.makedirs(_CACHE, exist_ok=True)
+else:
+    _CACHE = os.path.join(tempfile.gettempdir(), f"partgen-test-cache-{os.getpid()}")
+    shutil.rmtree(_CACHE, True)
+    os.makedirs(_CACHE)
+    atexit.register(shutil.rmtree, _CACHE, True)
+os.environ["PARTGEN_CACHE_DIR"] = _CACHE
 
 from partgen import pipeline
 

@@ -1,9 +1,9 @@
 """Decisions partgen remembers between runs: a small JSON file per decision in partgen's own cache
 folder, under a key that changes with everything the decision depends on.
 
-A decision (e.g. what ``backlash_per_gear_mm: auto`` chose, and the P(jam) it reaches) is stored
-under the sha256 of: what it was computed from (the caller's bytes, e.g. the pickled resolved
-design), the source of every partgen module, and the Python, numpy, manifold3d, shapely, trimesh
+A decision (what ``backlash_per_gear_mm: auto`` chose and the P(jam) it reaches, a layout a
+mechanism's search chose) is stored under the sha256 of: what it was computed from (the caller's
+bytes, e.g. the pickled resolved design), the source of every partgen module, and the Python, numpy, manifold3d, shapely, trimesh
 and scipy versions. So a remembered answer is the one the computation would give now: any change
 to the design, to partgen or to a library is another key, and the decision is computed again.
 

@@ -15,12 +15,14 @@ links' moment) until no pocket moves 0.001 mm.
 from __future__ import annotations
 
 import math
+import pickle
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ...config.loader import LoadedDesign
 from ...config.yamlio import dump_yaml
+from ...core.cache import recall, remember
 from ...core.protocol import ParamsKit
 from ...core.transforms import frame_z
 from ...core.quantise import quantise
@@ -223,6 +225,20 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
         lay = Layout({BASE: 0, **p.fixed_layout[0]}, dict(p.fixed_layout[1]))
     if lay is not None:
         return _build(p, lay, say, {"layout_source": "given"}, cache)
+    what = pickle.dumps(p, protocol=5)  # the search's answer is remembered (core.cache) under the resolved design
+    known = recall("bennett-layout", what)
+    if known is not None:
+        lay = Layout({int(k): int(v) for k, v in known["layer"]}, {str(k): float(v) for k, v in known["shift"]})
+        return _build(p, lay, say, known["figures"], cache)
+    kit = _search_and_build(p, say, cache)
+    lay = kit.layout
+    remember("bennett-layout", what, {"layer": sorted(lay.layer.items()), "shift": sorted(lay.shift.items()),
+                                      "figures": {k: kit.figures[k] for k in ("layout_source", "search_clearance_mm")}})
+    return kit
+
+
+def _search_and_build(p: BennettParams, say, cache: dict) -> BennettKit:
+    """The searched layout's kit (``build_bennett``)."""
     lay, bodies, angles, _, guessed = search_layout(p, say)
     # size the pockets roughly: one round places them to a millimetre or so
     rough = _build(p, lay, say, {}, cache, rounds=1).figures["next_pockets"]

@@ -350,3 +350,28 @@ def test_the_sweep_is_brute_force_under_its_threshold(seed, fixed):
     assert all(again[k][0] == pytest.approx(fresh[k][0], abs=1e-9) and again[k][1] == fresh[k][1] for k in again)
     # the per-angle profile's least is the pairs' least
     assert sweep.profile(lay).min() == pytest.approx(min(least, 8.0), abs=1e-9)
+
+
+def test_the_searched_layout_is_remembered_and_rebuilds_the_same_parts(kit, monkeypatch):
+    """The layout search's answer is kept in partgen's cache (core.cache) under the resolved design:
+    a second build of the same design does not search (the search would fail here) and makes the
+    same parts, byte for byte, with the same figures; another design is another key."""
+    from partgen.core.cache import recall
+    import pickle
+
+    known = recall("bennett-layout", pickle.dumps(kit.params, protocol=5))
+    assert known is not None and dict(map(tuple, known["layer"])) == {int(k): v for k, v in kit.layout.layer.items()}
+
+    def no_search(*a, **k):
+        raise AssertionError("searched again")
+    monkeypatch.setattr(A, "search_layout", no_search)
+    again = A.build_bennett(kit.params)
+    assert again.layout == kit.layout
+    assert again.figures["search_clearance_mm"] == kit.figures["search_clearance_mm"]
+    stl = lambda k: {p.name: mesh_arrays(p.solid) for p in k.parts if p.printed}  # noqa: E731
+    a, b = stl(kit), stl(again)
+    assert a.keys() == b.keys()
+    for name in a:
+        assert np.array_equal(a[name][0], b[name][0]) and np.array_equal(a[name][1], b[name][1]), name
+    other = dataclasses.replace(kit.params, offset_step=kit.params.offset_step / 2)
+    assert recall("bennett-layout", pickle.dumps(other, protocol=5)) is None
