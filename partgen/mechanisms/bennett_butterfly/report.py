@@ -37,10 +37,11 @@ def bill_text(man: dict, dest, seconds: float) -> str:
     return "\n".join(lines)
 
 
-def _page(kit: A.BennettKit, result) -> list[tuple[str, str]]:
+def _page(kit: A.BennettKit, result, files: dict | None = None) -> list[tuple[str, str]]:
     """One page: the design, the linkage at a few poses (planar and spatial), the assembled kit, the
     balance (centre-of-mass trace, the fill's sensitivity), the interference sweep, the base, how
-    each part prints, the bill of parts and what to buy."""
+    each part prints, the bill of parts and what to buy. ``files``: the trace's figures (its
+    poses.png is this page's: drawn once)."""
     from ...export import report as R
     from .plots import com_figure, poses_figure
     from ...export.render import render
@@ -49,7 +50,7 @@ def _page(kit: A.BennettKit, result) -> list[tuple[str, str]]:
     p = kit.params
     f, b = result.figures, result.figures["balance_mm"]
     lo, hi = (math.degrees(x) for x in p.workspace)
-    poses = poses_figure(p.bb, [lo, math.degrees(p.home), hi])
+    poses = (files or {}).get("poses.png") or poses_figure(p.bb, [lo, math.degrees(p.home), hi])
     ang = np.linspace(lo, hi, p.grid[1])
     labels = {"fdm": "as printed (FDM model), the fills as they sit", "solid": "printed solid (100 % infill)",
               "fdm_infill_error": f"infill {100 * p.infill:g} → {100 * (p.infill + p.infill_error):g} %",
@@ -126,7 +127,7 @@ def _page(kit: A.BennettKit, result) -> list[tuple[str, str]]:
 def report_sections(spec, kit, result, trace: Trace, files: dict) -> list[tuple[str, str]]:
     from ...export import report as R
 
-    sections = _page(kit, result)
+    sections = _page(kit, result, files)
     if "com.png" in files:
         sections.insert(2, ("Trace", R.img(files["com.png"], "centre of mass over the workspace")))
     return sections
