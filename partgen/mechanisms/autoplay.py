@@ -152,6 +152,7 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         return _with(raw, known["values"]), known["allocation"]
     try:
         kit = mech.build(spec, None)
+        mech.refuse(spec, kit)  # a part `build` would not write (empty, larger than the printer): before the check
     except DesignError as e:
         raise ConfigError(raw.path, e.key_path, e.problem) from None
     result = mech.check(spec, kit, None, None)
