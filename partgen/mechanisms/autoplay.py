@@ -23,7 +23,7 @@ of every mesh's backlash and every fit's radial gap the values open) with ties t
 of the earlier key. Then, where the kind takes a value per gear and per joint (its schema's
 ``PER_UNIT_PLAY``), each gear's backlash and each running fit's clearance are allocated on their own
 from the uniform choice (``design.allocate.allocate_units``: the least total play with a model
-probability of a jam no more than the uniform choice's; ``_per_unit``), and the allocation is adopted when it saves more than one grid
+probability of a jam no more than the uniform choice's, seated and in the worst case; ``_per_unit``), and the allocation is adopted when it saves more than one grid
 step of the coarsest key over the whole kit: those keys become mappings ``{default: the uniform
 value, <gear or joint>: its own}``. The design is then loaded with those numbers in place of
 ``auto``: the kit, its pinned design.yaml and every check see the numbers. A value that does not build (thinner teeth than
