@@ -99,6 +99,13 @@ def footprint(mesh: trimesh.Trimesh, margin: float) -> Polygon:
     return _hull(mesh).buffer(margin / 2.0, quad_segs=8)
 
 
+def fits_plate(mesh: trimesh.Trimesh, plate_xy: tuple[float, float], margin: float = 5.0) -> bool:
+    """Whether a part, its mesh as it prints, fits a ``plate_xy`` = (W, H) mm plate at some turn about
+    z with ``margin / 2`` mm to the edge — as ``layout`` would place it (``best_turn``: certified)."""
+    hull = np.asarray(_hull(mesh).exterior.coords)
+    return best_turn(hull, plate_xy, margin / 2.0)[1] >= -_FIT_TOL
+
+
 def _support(pts: np.ndarray, grow: float) -> np.ndarray:
     """Support distances (K,) of conv(pts) grown by ``grow`` in the _K fixed directions."""
     return (pts @ _N.T).max(axis=0) + grow

@@ -7,12 +7,14 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
 from ..core.findings import Finding, Result
 from ..core.protocol import Kit
 from .kit import PrintedPart, group_parts, printed
 
 __all__ = ["printed_groups", "stale_files", "stale_finding", "plan_plates", "plates_png", "plate_pngs",
-           "write_plate_files"]
+           "write_plate_files", "too_large"]
 
 _GROUPS: dict = {}  # id(kit) -> (kit, its printed parts grouped): one kit at a time
 
@@ -46,6 +48,26 @@ def stale_finding(kit: Kit, kit_dir: Path) -> Finding | None:
     return Finding("kit", "fail", f"{len(stale)} STL files in {kit_dir} are missing or differ from what its design.yaml "
                    f"builds ({', '.join(stale[:4])}{' …' if len(stale) > 4 else ''}): rebuild it",
                    tuple(s[:-4] for s in stale))
+
+
+def too_large(kit: Kit, margin: float) -> list[tuple[object, np.ndarray]]:
+    """The printed parts that print on the printer in no way: [(part, its extents sorted (3,) mm)].
+    A part prints when it fits the envelope in some axis order (``geometry.measure.oversize``), or
+    when, laid as the kit prints it, it fits the bed at some turn about z (``plates.fits_plate``,
+    ``margin`` / 2 from the edge: a long link on the diagonal, as the plates place it) and is no
+    taller than the envelope's height."""
+    from ..geometry.measure import oversize
+    from .plates import fits_plate
+
+    env = kit.printer.envelope
+    out = []
+    for part, ext in oversize(kit.parts, env):
+        mesh = printed(part, kit.printer).mesh
+        tall = float(np.ptp(np.asarray(mesh.vertices)[:, 2]))
+        if tall <= env[2] + 1e-9 and fits_plate(mesh, (env[0], env[1]), margin):
+            continue
+        out.append((part, ext))
+    return out
 
 
 def plan_plates(kit: Kit, margin: float, result: Result):

@@ -69,6 +69,7 @@ ROLES = {  # role -> (label, start, step, most)
     "radial": ("clearance, radial", AUTO_RUNNING_START_MM / 2, RUNNING_STEP_MM / 2, RUNNING_MAX_MM / 2),
 }
 _DONE: dict = {}
+VERIFY_ROUNDS = 3  # builds of the chosen values checked on their own kit's model, at most
 HELD_OUT = 7  # the chunk index of other prints an allocation's jams are reported on (the choice: chunk 0)
 
 
@@ -160,11 +161,15 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     tol = getattr(raw.design, "tolerance", None)
     target = tol.max_jam_probability if tol is not None else 0.01
 
+    built_at = {k: ROLES[r][1] for k, r in keys.items()}  # the values the model's kit was built with
+    least: dict = {}  # grid index each key may not go below (a re-search only raises)
+
     def knobs(most: dict) -> list[Knob]:
         out = []
         for k, role in keys.items():
             label, s0, step, top = ROLES[role]
-            out.append(Knob(k, label, s0, _slope(role, model), step, 1, most.get(k, int(round(top / step)))))
+            out.append(Knob(k, label, built_at[k], _slope(role, model), step, least.get(k, 1),
+                            most.get(k, int(round(top / step)))))
         return out
 
     most: dict = {}
@@ -188,9 +193,30 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
         limits[k] = {"needed_mm": got["values"][k], "problem": problem}
         most[k] = lo
         got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
+    # the choice verified on the kit it builds: that kit's own model (its check, its margins) on the
+    # same prints; where it jams more than allowed, search again from it (only upwards)
+    verified = []
+    for n in range(VERIFY_ROUNDS):
+        at = _with(raw, got["values"])
+        spec_v = mech.resolve(at)
+        try:
+            kit_v = mech.build(spec_v, None)
+        except DesignError as e:
+            raise ConfigError(raw.path, e.key_path, e.problem) from None
+        result_v = mech.check(spec_v, kit_v, None, None)
+        model_v = hook(spec_v, kit_v, result_v, kit_v.printer.xy_accuracy)
+        own = int((_draws(model_v, AUTO_SAMPLES, got["seed"]) < 0.0).any(axis=1).sum())
+        allowed = int(math.floor(target * AUTO_SAMPLES + 1e-9)) if got["reached"] else got["jams"]
+        verified.append({"values": dict(got["values"]), "jams": own, "allowed": allowed})
+        spec, kit, result, model = spec_v, kit_v, result_v, model_v
+        built_at = dict(got["values"])
+        if own <= allowed or n == VERIFY_ROUNDS - 1:  # the last round's values stand, verified or not (it says)
+            break
+        least = {k: int(round(got["values"][k] / ROLES[r][2])) for k, r in keys.items()}
+        got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
     values = got["values"]
     per_unit = _per_unit(raw, mech, model, keys, got, most,
-                         lambda: hook(spec, kit, result, kit.printer.xy_accuracy, seated=False))
+                         lambda: hook(spec, kit, result, kit.printer.xy_accuracy, seated=False), built_at)
     design_values = dict(values)
     if per_unit["adopted"]:
         for k, own in per_unit["own"].items():
@@ -198,7 +224,7 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     alloc = {"key": ", ".join(keys), **got, "accuracy_mm": kit.printer.xy_accuracy, "printer": kit.printer.name,
              "meshes": len({m.unit for m in model.margins if m.what.startswith("backlash")}),  # one unit: a heel and a toe margin
              "joints": sum(m.group == "joint" and m.what == "radial gap" for m in model.margins),
-             "limited_by": limits or None, "credits": model.credits, "per_unit": per_unit}
+             "limited_by": limits or None, "credits": model.credits, "per_unit": per_unit, "verified": verified}
     if per_unit["adopted"]:  # the kit is built with the allocation: its figures are the headline
         alloc["uniform"] = {k: got[k] for k in ("jams", "probability", "ci95", "cost_mm")}
         alloc.update({k: per_unit[k] for k in ("jams", "probability", "ci95", "cost_mm", "units", "groups")})
@@ -214,12 +240,13 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     return _with(raw, design_values), alloc
 
 
-def _units(model, keys: dict, got: dict, most: dict) -> tuple[list[Unit], list[int]] | str:
+def _units(model, keys: dict, got: dict, most: dict, built_at: dict) -> tuple[list[Unit], list[int]] | str:
     """(each gear's and each running fit's unit, the uniform choice's grid index of each) of a
-    model, or what stops the split."""
+    model (its kit built with ``built_at``: key -> mm), or what stops the split."""
     units, start = [], []
     for k, role in keys.items():
-        label, s0, step, top = ROLES[role]
+        label, _, step, top = ROLES[role]
+        s0 = built_at[k]
         slopes = gear_slopes(model) if role == "backlash" else joint_slopes(model)
         if not slopes or not np.allclose(sum(slopes.values()), _slope(role, model), atol=1e-12):
             return f"{k}: the model's margins do not split into one per {'gear' if role == 'backlash' else 'joint'}"
@@ -230,7 +257,7 @@ def _units(model, keys: dict, got: dict, most: dict) -> tuple[list[Unit], list[i
     return units, start
 
 
-def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict, worst_model) -> dict:
+def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict, worst_model, built_at: dict) -> dict:
     """Each gear its own backlash and each running fit its own clearance, from the uniform choice
     ``got`` (``design.allocate.allocate_units``, on the same prints and grids, each unit at most its
     key's most), with a probability of a jam (each margin's exact normal tail, summed) no more than
@@ -249,13 +276,13 @@ def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict,
     if not per or not set(keys) <= set(per):
         out["why"] = f"a {mech.kind} design takes one value per key"
         return out
-    split = _units(model, keys, got, most)
+    split = _units(model, keys, got, most, built_at)
     if isinstance(split, str):
         out["why"] = split
         return out
     units, start = split
     worst = worst_model()
-    wsplit = _units(worst, keys, got, most)
+    wsplit = _units(worst, keys, got, most, built_at)
     if isinstance(wsplit, str) or [(u.key, u.name) for u in wsplit[0]] != [(u.key, u.name) for u in units]:
         out["why"] = "the worst case's model does not split into the same gears and joints: one value per key"
         return out

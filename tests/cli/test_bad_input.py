@@ -170,7 +170,7 @@ CASES = [
     Case("pointed_teeth", design(_liu, _set("gears", "profile_shift", 1.5)), "gears.profile_shift", ["pointed"]),
     # --- found while building the geometry (slow: ~1 s each)
     Case("legs_too_short", design(_default, _set("base", "leg_height_mm", 5.0)), "base.leg_height_mm"),
-    Case("part_larger_than_printer", design(_default, _set("curve", "scale_mm_per_unit", 60.0)),
+    Case("part_larger_than_printer", design(_default, _set("curve", "scale_mm_per_unit", 80.0)),
          "curve.scale_mm_per_unit", ["B1", "406"]),
 ]
 

@@ -410,3 +410,31 @@ def test_plate_picture(items, layouts, tmp_path):
     assert 400 <= w <= 6000 and 200 <= h <= 6000, (w, h)
     assert w > h  # several plates side by side
     assert len(data) > 20_000  # something was drawn
+
+
+def test_too_large_is_what_no_plate_and_no_orientation_takes(kit_of):
+    """``export.prints.too_large`` (what `build` refuses): the default kit's B1 (about 230 × 32 mm flat,
+    rounded ends, 21.5 mm tall) on smaller printers. A 185 mm cube: longer than every side, it lies on
+    the diagonal (its rounded ends: (230 − 32) / √2 + 32 + the margin < 185): printable. A 165 mm
+    cube: not even there. A bed of 260 mm but 15 mm of height: its footprint fits, its height does
+    not. Measured against ``plates.fits_plate`` and the part's own print height."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from partgen.export.kit import printed
+    from partgen.export.plates import fits_plate
+    from partgen.export.prints import too_large
+
+    kit = kit_of("butterfly").kit
+    b1 = next(p for p in kit.parts if p.name == "B1")
+    mesh = printed(b1, kit.printer).mesh
+    flat = np.ptp(np.asarray(mesh.vertices), axis=0)
+    assert flat[0] > 185 or flat[1] > 185  # longer than the 185 mm bed's side: only the diagonal takes it
+
+    def big(env):
+        k = SimpleNamespace(parts=kit.parts, printer=replace(kit.printer, envelope=env))
+        return {p.name for p, _ in too_large(k, 5.0)}
+    assert "B1" not in big((185.0, 185.0, 185.0)) and fits_plate(mesh, (185.0, 185.0), 5.0)
+    assert "B1" in big((165.0, 165.0, 165.0)) and not fits_plate(mesh, (165.0, 165.0), 5.0)
+    assert "B1" in big((260.0, 260.0, 15.0)) and fits_plate(mesh, (260.0, 260.0), 5.0) and flat[2] > 15.0
+    assert not big((406.0, 355.0, 406.0))  # the Fortus takes the whole kit

@@ -26,7 +26,7 @@ from ...design.mechanism import PEN_BORE_CLEARANCE, ChainDesign
 from .params import KitParams
 from ...config.yamlio import dump_yaml
 from ...errors import ConfigError, DesignError
-from ...geometry.measure import empty_parts, oversize
+from ...geometry.measure import empty_parts
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part
 from ...geometry.printing import least_support_flip
@@ -367,8 +367,12 @@ def size_key(spec: "ChainSpec", name: str) -> str:
 
 
 def oversize_parts(spec: "ChainSpec", kit: Kit) -> list[tuple[str, str, np.ndarray]]:
-    """Parts whose extents (any axis order) exceed the printer envelope: (name, key, extents)."""
-    return [(p.name, size_key(spec, p.name), ext) for p, ext in oversize(kit.parts, kit.params.printer.envelope)]
+    """Parts that print on the printer in no way (``export.prints.too_large``: larger than its envelope
+    in every axis order, and, laid as they print, wider than its bed at every turn — a long link may
+    lie on the diagonal — or taller than it): (name, key, extents)."""
+    from ...export.prints import too_large
+
+    return [(p.name, size_key(spec, p.name), ext) for p, ext in too_large(kit, kit.params.checks.plate_margin)]
 
 
 def build(spec: "ChainSpec", progress=None) -> Kit:
@@ -389,7 +393,7 @@ def refuse(spec: "ChainSpec", kit: Kit) -> None:
         name, key, ext = big[0]
         env = " × ".join(f"{x:g}" for x in spec.params.printer.envelope)
         raise ConfigError(spec.path, key, f"part {name} measures {' × '.join(f'{x:.1f}' for x in ext[::-1])} mm "
-                          f"and does not fit the printer's {env} mm envelope in any orientation"
+                          f"and does not fit the printer's {env} mm envelope in any orientation, nor its bed at any turn"
                           + (f" (and {len(big) - 1} more parts)" if len(big) > 1 else ""))
 
 
