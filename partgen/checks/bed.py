@@ -23,7 +23,7 @@ from ..geometry.measure import shell_count
 from ..geometry.printing import MIN_BED_CONTACT_MM2
 from ..geometry.solid import print_arrays
 
-__all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings", "bed_summary"]
+__all__ = ["MIN_BED_CONTACT_MM2", "bed_contact_and_overhang", "bed_findings", "bed_summary", "add_bed_and_bores"]
 
 ON_BED_TOL = 1e-4  # mm: a face within this of z = 0 lies on the bed
 FLAT_COS = 0.9999  # a face whose normal is within 0.8° of straight down is flat
@@ -80,6 +80,19 @@ def bed_findings(parts, printer: PrinterLimits) -> tuple[list[Finding], dict]:
     if not math.isfinite(figures["least_bed_contact_mm2"]):
         del figures["least_bed_contact_mm2"]
     return found, figures
+
+
+def add_bed_and_bores(res, parts, printer: PrinterLimits) -> None:
+    """Add the bed rules (``bed_findings``) and the open bores (``checks.bores.bore_findings``) of the
+    printed ``parts`` to ``res`` (a ``core.findings.Result``), in that order, and their figures as
+    ``res.figures["printability"]``: the bed's, with ``bores``."""
+    from .bores import bore_findings
+
+    found, on_bed = bed_findings(parts, printer)
+    res.add(*found)
+    found, bores = bore_findings(parts)
+    res.add(*found)
+    res.figures["printability"] = {**on_bed, "bores": bores}
 
 
 def bed_summary(figures: dict) -> str:

@@ -89,8 +89,7 @@ def pair_check(res: Result, kit, thetas: np.ndarray, play: dict, r2: float, runn
     ``play``: ``contact_angles`` at ``thetas`` (rad of gear 2); ``r2``: the radius (mm) its play is
     measured along; ``designed_mm``: the backlash designed there; ``extra``: figures of the
     mechanism's own, placed after the phases."""
-    from .bed import bed_findings
-    from .bores import bore_findings
+    from .bed import add_bed_and_bores
 
     n = len(thetas)
     bad = np.flatnonzero(play["overlap_mm3"] > VOLUME_EPS)
@@ -128,9 +127,5 @@ def pair_check(res: Result, kit, thetas: np.ndarray, play: dict, r2: float, runn
                                     "designed": designed_mm},
                        transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
                        closest_mm={k: float(round(v, 4)) for k, v in closest.items()}, radial_gap_mm=float(radial))
-    found, on_bed = bed_findings(kit.parts, kit.printer)
-    res.add(*found)
-    found, bores = bore_findings(kit.parts)
-    res.add(*found)
-    res.figures["printability"] = {**on_bed, "bores": bores}
+    add_bed_and_bores(res, kit.parts, kit.printer)
 

@@ -98,14 +98,9 @@ def check(spec: PairSpec, kit: PairKit, samples: int | None = None, progress=Non
                        transmission_error_mm={"peak_to_peak": float(np.ptp(te)), "mean": float(te.mean())},
                        max_overlap_mm2=float(play["overlap_mm2"].max()), radial_gap_mm=float(radial),
                        radial_gaps_mm=[float(x) for x in gaps])
-    from ...checks.bed import bed_findings
-    from ...checks.bores import bore_findings
+    from ...checks.bed import add_bed_and_bores
 
-    found, on_bed = bed_findings(kit.parts, kit.printer)
-    res.add(*found)
-    found, bores = bore_findings(kit.parts)
-    res.add(*found)
-    res.figures["printability"] = {**on_bed, "bores": bores}
+    add_bed_and_bores(res, kit.parts, kit.printer)
     return res
 
 

@@ -115,19 +115,14 @@ def mate_sampling(samples: int | None) -> dict:
 
 
 def check(spec: WristSpec, kit: WristKit, samples: int | None = None, progress=None) -> Result:
-    from ...checks.bed import bed_findings
-    from ...checks.bores import bore_findings
+    from ...checks.bed import add_bed_and_bores
 
     res = check_wrist(kit, progress=progress, **wrist_sampling(samples))
     if spec.mate is not None:
         from .mate import check_mate
 
         check_mate(kit, res, **mate_sampling(samples))
-    found, on_bed = bed_findings(kit.parts, kit.printer)
-    res.add(*found)
-    found, bores = bore_findings(kit.parts)
-    res.add(*found)
-    res.figures["printability"] = {**on_bed, "bores": bores}
+    add_bed_and_bores(res, kit.parts, kit.printer)
     return res
 
 
