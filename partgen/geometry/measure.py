@@ -13,9 +13,11 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
+from ..errors import DesignError
 from .solid import mesh_arrays
 
-__all__ = ["Slab", "section", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts", "shell_count"]
+__all__ = ["Slab", "section", "slabs", "to_shapely", "place2d", "intersection", "min_gap", "from_mesh", "oversize", "empty_parts", "shell_count",
+           "refuse_oversize"]
 
 
 @dataclass(frozen=True)
@@ -150,3 +152,10 @@ def oversize(parts, envelope, tol: float = 1e-9) -> list[tuple[object, np.ndarra
         if np.any(ext > env + tol):
             out.append((p, ext))
     return out
+
+
+def refuse_oversize(parts, envelope, key: str) -> None:
+    """Raise ``DesignError`` naming ``key`` (the design value that sizes the parts) for the first printed
+    part too big for the printer in every orientation (``oversize``): what ``build`` will not write."""
+    for part, ext in oversize(parts, envelope):
+        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation", key)

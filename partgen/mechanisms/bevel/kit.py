@@ -20,7 +20,7 @@ from ...core.protocol import SpecKit
 from ...core.transforms import pose_z
 from ...errors import DesignError
 from ...geometry.bevel import bevel_gear, hull_to_floor
-from ...geometry.measure import oversize
+from ...geometry.measure import refuse_oversize
 from ...geometry.outline import circle
 from ...geometry.printing import least_support_flip
 from ...geometry.solid import extrude, union
@@ -95,9 +95,7 @@ def build(spec: BevelSpec, progress=None) -> BevelKit:
 
 
 def refuse(spec: BevelSpec, kit: BevelKit) -> None:
-    for part, ext in oversize(kit.parts, spec.printer.envelope):
-        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
-                          "gears.module_mm")
+    refuse_oversize(kit.parts, spec.printer.envelope, "gears.module_mm")
 
 
 def design_numbers(spec: BevelSpec) -> dict:

@@ -22,7 +22,7 @@ from ...design.crossed_helical import ThreadSpec, efficiency, friction_angle
 from ...design.gearing import GearSpec, ToothSystem
 from ...errors import DesignError
 from ...geometry.helical import centred_helical, centred_thread, cylinder_along
-from ...geometry.measure import oversize
+from ...geometry.measure import refuse_oversize
 from ...geometry.outline import circle
 from ...geometry.printing import least_support_flip
 from ...geometry.solid import extrude, union
@@ -159,9 +159,7 @@ def build(spec: CrossedSpec, progress=None) -> CrossedKit:
 
 
 def refuse(spec: CrossedSpec, kit: CrossedKit) -> None:
-    for part, ext in oversize(kit.parts, spec.printer.envelope):
-        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
-                          "gears.normal_module_mm")
+    refuse_oversize(kit.parts, spec.printer.envelope, "gears.normal_module_mm")
 
 
 def design_numbers(spec: CrossedSpec) -> dict:

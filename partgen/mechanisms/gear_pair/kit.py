@@ -15,7 +15,7 @@ from ...core.quantise import r6
 from ...core.protocol import SpecKit
 from ...core.transforms import pose_z
 from ...errors import DesignError
-from ...geometry.measure import oversize
+from ...geometry.measure import refuse_oversize
 from ...geometry.outline import circle, hull_of_discs
 from ...geometry.parts import DFit, base_plate, bored_gear, shaft
 from ...geometry.printing import least_support_flip
@@ -67,9 +67,7 @@ def build(spec: PairSpec, progress=None) -> PairKit:
 
 
 def refuse(spec: PairSpec, kit: PairKit) -> None:
-    for part, ext in oversize(kit.parts, spec.printer.envelope):
-        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
-                          "gears.module_mm")
+    refuse_oversize(kit.parts, spec.printer.envelope, "gears.module_mm")
 
 
 def design_summary(kind: str, spec: PairSpec, kit: PairKit) -> dict:

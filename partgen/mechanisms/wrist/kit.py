@@ -14,7 +14,7 @@ from ...config.yamlio import dump_yaml
 from ...core.protocol import Motion, ParamsKit
 from ...design.spherical import RangeError
 from ...errors import DesignError
-from ...geometry.measure import oversize
+from ...geometry.measure import refuse_oversize
 from ...design import spherical as sph
 from .spec import WristSpec
 from ...geometry import wrist as W
@@ -178,9 +178,7 @@ def build(spec: WristSpec, progress=None) -> WristKit:
 
 
 def refuse(spec: WristSpec, kit: WristKit) -> None:
-    for p, ext in oversize(kit.parts, spec.printer.envelope):
-        raise DesignError(f"{p.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
-                          "wrist.centre_distance_mm")
+    refuse_oversize(kit.parts, spec.printer.envelope, "wrist.centre_distance_mm")
 
 
 def design_summary(kind: str, spec: WristSpec, kit: WristKit) -> dict:

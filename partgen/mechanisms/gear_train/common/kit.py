@@ -12,10 +12,9 @@ from ....config.yamlio import dump_yaml
 from ....core.quantise import r6
 from ....core.parts import Contact, Part
 from ....design.gearing import GearSpec
-from ....errors import DesignError
 from ....geometry.gear import gear_body
 from ....geometry.hubs import hex_nut, key_ridge, keyway_hole, nut_trap, radial_cylinder, block, square_nut
-from ....geometry.measure import oversize
+from ....geometry.measure import refuse_oversize
 from ....geometry.outline import circle
 from ....geometry.parts import DFit, shaft as shaft_solid
 from ....geometry.solid import prisms, slab, union
@@ -139,9 +138,7 @@ def hub_summary(h, running: float) -> dict:
 
 def refuse(spec, kit) -> None:
     """DesignError when a part fits the printer in no orientation (``build`` writes no such kit)."""
-    for part, ext in oversize(kit.parts, spec.printer.envelope):
-        raise DesignError(f"{part.name} measures {ext.round(1)} mm and does not fit the printer in any orientation",
-                          "gears.module_mm")
+    refuse_oversize(kit.parts, spec.printer.envelope, "gears.module_mm")
 
 
 def kit_files(raw: LoadedDesign) -> dict[str, bytes]:
