@@ -66,13 +66,19 @@ def _on_bed(vertices, faces, normals, down) -> np.ndarray:
     return (np.all(h[faces] >= bed - ON_BED, axis=1)) & (normals @ down > 1 - FLAT)
 
 
+def _contact_and_overhang(vertices, faces, area, normals, down, angle_deg: float) -> tuple[float, float]:
+    """mm² flat on the bed and mm² overhanging steeper than ``angle_deg`` (off the bed) of a part
+    resting along unit ``down``, from its faces' areas and unit normals (``face_areas``)."""
+    bed = _on_bed(vertices, faces, normals, down)
+    steep = normals @ down > math.sin(math.radians(angle_deg))
+    return float(area[bed].sum()), float(area[steep & ~bed].sum())
+
+
 def overhang_area(vertices: np.ndarray, faces: np.ndarray, down=(0.0, 0.0, -1.0), angle_deg: float = 45.0) -> float:
     """mm² of faces steeper than ``angle_deg`` from the vertical facing down, those on the bed left out."""
     d = np.asarray(down, float) / np.linalg.norm(down)
     f = np.asarray(faces, np.int64)
-    area, n = face_areas(vertices, f)
-    steep = n @ d > math.sin(math.radians(angle_deg))
-    return float(area[steep & ~_on_bed(vertices, f, n, d)].sum())
+    return _contact_and_overhang(vertices, f, *face_areas(vertices, f), d, angle_deg)[1]
 
 
 def bed_contact_area(vertices: np.ndarray, faces: np.ndarray, down=(0.0, 0.0, -1.0)) -> float:
@@ -181,13 +187,11 @@ def least_support_flip(solid: m3d.Manifold, angle_deg: float = 45.0, min_contact
     larger contact, then as made."""
     v, f = mesh_arrays(solid)
     v, f = np.asarray(v, float), np.asarray(f, np.int64)
-    area, n = face_areas(v, f)  # once for both sides (overhang_area's and bed_contact_area's sums, as they make them)
+    area, n = face_areas(v, f)  # once for both sides
     cands = []
     for flip, down in ((False, (0.0, 0.0, -1.0)), (True, (0.0, 0.0, 1.0))):
-        d = np.asarray(down, float) / np.linalg.norm(down)
-        bed = _on_bed(v, f, n, d)
-        steep = n @ d > math.sin(math.radians(angle_deg))
-        cands.append((round(float(area[steep & ~bed].sum()), 1), -round(float(area[bed].sum()), 1), flip))
+        contact, over = _contact_and_overhang(v, f, area, n, np.asarray(down, float), angle_deg)
+        cands.append((round(over, 1), -round(contact, 1), flip))
     ok = [c for c in cands if -c[1] >= min_contact_mm2] or cands
     return min(ok)[2]
 
