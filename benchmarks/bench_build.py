@@ -63,6 +63,13 @@ except ImportError as e:  # pragma: no cover - wrong interpreter
              f".venv/bin/python benchmarks/{Path(__file__).name}")
 
 
+# Every child may write its bytecode (.pyc), as Python does on a user's machine: with
+# PYTHONDONTWRITEBYTECODE set (as in some sandboxes and CI images) partgen's ~30,000 lines would be
+# compiled again in every fresh process, a cost no installed tool pays after its first run (the floor
+# imports only installed libraries, whose bytecode pip wrote). The warm-up runs write it.
+CHILD_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
 def say(msg: str) -> None:
     """Progress on stderr, so stdout holds only the report."""
     print(f"  .. {msg}", file=sys.stderr, flush=True)
@@ -107,7 +114,7 @@ class ChildRunner:
         rss_file = self.scratch / "child.rss"
         cmd = [self.gnu_time, "-f", "%M", "-o", str(rss_file), *argv] if self.gnu_time else argv
         t0 = time.perf_counter()
-        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, env=CHILD_ENV)
         wall = time.perf_counter() - t0
         if proc.returncode != 0:
             sys.exit(f"bench_build: {' '.join(argv)} failed ({proc.returncode}):\n{proc.stderr}")
@@ -134,6 +141,7 @@ def bench_import(runner: ChildRunner, runs: int) -> dict:
 
 def bench_kit(runner: ChildRunner, script: Path, cfg: str, runs: int, scratch: Path) -> dict:
     walls, rss, cli_s, man = [], [], [], None
+    runner.run([str(script), "build", cfg, "-o", str(scratch / f"{Path(cfg).stem}-warm"), "-q"])  # warm-up: .pyc, page cache, auto choices remembered
     for i in range(runs):
         dest = scratch / f"{Path(cfg).stem}-{i}"  # a folder that does not exist yet: the CLI creates it
         w, mb, exact, proc = runner.run([str(script), "build", cfg, "-o", str(dest), "-q"])
