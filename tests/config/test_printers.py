@@ -199,12 +199,16 @@ def _gear_ok(inputs, params, m) -> bool:
 @pytest.mark.parametrize("printer", ["prusa_mk4", "fortus450mc"])
 def test_auto_module_is_the_largest_that_works(printer):
     """auto's module meets every rule; no larger module on the grid does (measured by synthesizing
-    each)."""
-    spec = load(DESKTOP, over=overrides((), printer)).spec
+    each). (The backlash pinned at auto play's start value, the one the module search runs at when
+    the backlash is auto too: auto play's kits are tests/studies/test_autoplay.py's subject.)"""
+    from partgen.config.schema import AUTO_PLAY_START_MM
+    over = overrides([f"gears.backlash_per_gear_mm={AUTO_PLAY_START_MM}"], printer)
+    spec = load(DESKTOP, over=over).spec
     m = spec.params.system.module
+    assert spec.params.system.backlash_per_gear == AUTO_PLAY_START_MM
     assert not [f for f in spec.mechanism.findings if f.severity == "warn" and f.rule in GEAR_RULES]
     from partgen.mechanisms import load_design
-    inputs, params = resolve(load_design(DESKTOP, overrides((), printer)))
+    inputs, params = resolve(load_design(DESKTOP, over))
     assert _gear_ok(inputs, params, m)
     assert not any(_gear_ok(inputs, params, x) for x in module_grid() if x > m + 1e-9)
 
