@@ -305,7 +305,8 @@ def test_module_1_5_cannot_gear_the_default_chain_and_the_refusal_says_what_can(
               for r in re.search(r"gears\.module_mm in (.*?) \(or", msg)[1].replace(" mm", "").split(", ")]
     assert not any(lo <= 1.5 <= hi for lo, hi in ranges) and any(lo <= 1.4 <= hi for lo, hi in ranges)
     # (the backlash pinned: auto play of the 1.4 mm chain is not what this is about)
-    assert load(CONFIGS / "butterfly.yaml", over=overrides(["gears.module_mm=1.4", PINNED])).spec.params.system.module == 1.4
+    at_1_4 = load(CONFIGS / "butterfly.yaml", over=overrides(["gears.module_mm=1.4", PINNED]))
+    assert at_1_4.spec.params.system.module == 1.4
 
 
 @pytest.mark.parametrize("config,key,read", [

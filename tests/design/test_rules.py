@@ -162,7 +162,8 @@ def test_an_axial_gap_at_the_least_clearance_passes_and_under_it_is_warned(tmp_p
     found, figures = sweep(kit, prepare(kit), sample_angles(8))
     assert not [f for f in found if f.check == "clearance"], [f.message for f in found][:3]
     assert figures["closest_approach"]["mm"] == pytest.approx(0.3)
-    under = pipeline.load(design(tmp_path, joints={"axial_gap_mm": 0.25}, checks={"min_clearance_mm": 0.3}, gears=gears))
+    under = pipeline.load(design(tmp_path, joints={"axial_gap_mm": 0.25}, checks={"min_clearance_mm": 0.3},
+                                 gears=gears))
     (warned,) = [f for f in under.spec.mechanism.findings if f.rule == "clearance"]
     assert warned.severity == "warn" and warned.key == "joints.axial_gap_mm" and "≥ 0.3" in warned.message
 
