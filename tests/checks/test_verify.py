@@ -93,8 +93,10 @@ def test_stacked_prisms_share_their_faces_exactly():
     {"curve.scale_mm_per_unit": 38.67, "joints.axle_diameter_mm": 10.99},
 ])
 def test_issue_designs_build_every_part_as_one_shell(tmp_path, changes):
+    """(The backlash pinned at what auto gives on the Fortus, 0.1 mm: the shells at fault are axles and
+    link plates, which it does not shape, and auto would build and check two more kits per design.)"""
     cfg = modified("butterfly", tmp_path, {"printer": str(CONFIGS / "printers" / "fortus450mc.yaml"), "name": "repro",
-                                           **changes}, name="repro.yaml")
+                                           "gears.backlash_per_gear_mm": 0.1, **changes}, name="repro.yaml")
     _, _, man, dest = pipeline.build(cfg, tmp_path / "kit")
     for p in man["parts"]:
         r = mesh_report(*read_stl((dest / p["file"]).read_bytes()))
