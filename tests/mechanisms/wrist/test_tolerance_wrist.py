@@ -29,10 +29,18 @@ def clear(kit, clearance=None) -> tuple:
     return (kit if clearance is None else replace(kit, spec=replace(kit.spec, clearance=clearance))), r
 
 
-def test_wrist_model_from_its_check(kit_of):
+@pytest.fixture(scope="module")
+def checked(kit_of):
+    """The shipped wrist_sphere kit's check at 8 samples (the pair's poses and play, and its mate's: 3
+    turns, 1 backlash pose), run once for the module: the dome model's test and the mate's read it."""
+    b = kit_of("wrist_sphere")
+    return b.loaded.mechanism.check(b.loaded.spec, b.kit, 8, None)
+
+
+def test_wrist_model_from_its_check(kit_of, checked):
     b = kit_of("wrist_sphere")
     mech = b.loaded.mechanism
-    result = mech.check(b.loaded.spec, b.kit, 8, None)
+    result = checked
     assert result.figures["max_overlap_mm3"] == 0.0
     m = tolerance_hook(mech)(b.loaded.spec, b.kit, result, 0.127)
     domes = [k for k, x in enumerate(m.margins) if x.unit != MATE_UNIT]
@@ -63,15 +71,13 @@ def test_more_clearance_fewer_jams_and_an_overlap_jams(kit_of):
 # --- the cross gear and its mate -------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def mate_checked(kit_of):
-    """(kit, the mate's check figures) of the shipped wrist_sphere kit (its mate's check, 1 backlash pose)."""
-    from partgen.mechanisms.wrist.mate import check_mate
+def mate_checked(kit_of, checked):
+    """(kit, the check's figures with the mate's) of the shipped wrist_sphere kit: the mate's part of
+    ``checked`` (``mate_sampling(8)``: 3 turns at each tilt, 1 backlash pose)."""
+    from partgen.mechanisms.wrist.checks import mate_sampling
 
-    kit = kit_of("wrist_sphere").kit
-    r = Result()
-    r.figures["max_overlap_mm3"] = 0.0
-    check_mate(kit, r, psi_samples=3, backlash_poses=1)
-    return kit, r
+    assert mate_sampling(8) == {"psi_samples": 3, "backlash_poses": 1}
+    return kit_of("wrist_sphere").kit, checked
 
 
 def mate_jam(model, n: int = 20000) -> float:
