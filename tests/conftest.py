@@ -169,12 +169,22 @@ def pytest_collection_modifyitems(config, items):
     items.sort(key=lambda it: rank.get(_group(it.nodeid), len(FIRST)))  # stable: a file keeps its order
 
 
-def pytest_xdist_make_scheduler(config, log):
-    """Whole files per worker (xdist's loadfile), the ``SHARED`` tests with the file they share a kit with."""
-    from xdist.scheduler import LoadScopeScheduling
+class _SharedKitsScheduling:
+    """xdist's scheduler hook, registered only when xdist is loaded (``pytest -p no:xdist`` and ``-n 0``
+    run without it: a conftest hook of an absent plugin is an error)."""
 
-    class SharedKits(LoadScopeScheduling):
-        def _split_scope(self, nodeid: str) -> str:
-            return _group(nodeid)
+    @staticmethod
+    def pytest_xdist_make_scheduler(config, log):
+        """Whole files per worker (xdist's loadfile), the ``SHARED`` tests with the file they share a kit with."""
+        from xdist.scheduler import LoadScopeScheduling
 
-    return SharedKits(config, log)
+        class SharedKits(LoadScopeScheduling):
+            def _split_scope(self, nodeid: str) -> str:
+                return _group(nodeid)
+
+        return SharedKits(config, log)
+
+
+def pytest_configure(config):
+    if config.pluginmanager.hasplugin("xdist"):
+        config.pluginmanager.register(_SharedKitsScheduling(), "partgen-shared-kits")
