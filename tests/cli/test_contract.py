@@ -35,7 +35,7 @@ from partgen.mechanisms import REGISTRY
 DESIGNS = {
     "gear_chain": "configs/star.yaml",
     "wrist": "tests/designs/wrist_small.yaml",  # the shipped wrists take 30-50 s to build
-    "bennett_butterfly": "tests/designs/bennett_fixed.yaml",  # the shipped design less its layout search
+    "bennett_butterfly": "tests/designs/bennett_contract.yaml",  # the shipped design less its layout search, coarser
     "gear_pair": "configs/gear_pair.yaml",
     "gear_train": "configs/gear_train_rack.yaml",
     "crossed_helical": "tests/designs/crossed_small.yaml",  # the shipped pair, coarser, at 4 phases

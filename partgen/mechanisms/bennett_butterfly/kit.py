@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import pickle
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -220,7 +221,7 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     path a fixed layout takes (parts already built are reused), so the kit folder's design.yaml
     rebuilds it byte for byte."""
     say = progress or (lambda s: None)
-    cache: dict = {}
+    cache = _PartMemo(p)
     if lay is None and p.fixed_layout is not None:
         lay = Layout({BASE: 0, **p.fixed_layout[0]}, dict(p.fixed_layout[1]))
     if lay is not None:
@@ -235,6 +236,42 @@ def build_bennett(p: BennettParams, progress=None, lay: Layout | None = None) ->
     remember("bennett-layout", what, {"layer": sorted(lay.layer.items()), "shift": sorted(lay.shift.items()),
                                       "figures": {k: kit.figures[k] for k in ("layout_source", "search_clearance_mm")}})
     return kit
+
+
+class _PartMemo:
+    """The parts built and weighed in this process (a bounded LRU shared by every build of it), under
+    the key ``_build`` gives a part (its features and facets) with the design's numbers that weighing
+    and laying it on the bed read (density, overhang rule, least bed contact, walls, skin, infill).
+    A kit built again in one process (a kit folder checked after its build, auto play's kits at the
+    start value, a sweep's neighbours) reuses a part whose inputs are the same: the very objects the
+    first build made, so its files are the same bytes. Nothing is kept across processes."""
+
+    _parts: "OrderedDict[tuple, _Built]" = OrderedDict()
+    SIZE = 96  # parts (a kit has 13): a few kits' worth
+
+    def __init__(self, p: BennettParams):
+        self._with = (p.overhang_angle, p.min_contact, p.density, p.print_wall, p.print_skin, p.infill)
+
+    def get(self, key):
+        hit = self._parts.get((key, self._with))
+        if hit is not None:
+            self._parts.move_to_end((key, self._with))
+        return hit
+
+    def __contains__(self, key) -> bool:
+        return self.get(key) is not None
+
+    def __getitem__(self, key):
+        hit = self.get(key)
+        if hit is None:
+            raise KeyError(key)
+        return hit
+
+    def __setitem__(self, key, built: "_Built") -> None:
+        self._parts[(key, self._with)] = built
+        self._parts.move_to_end((key, self._with))
+        while len(self._parts) > self.SIZE:
+            self._parts.popitem(last=False)
 
 
 def _search_and_build(p: BennettParams, say, cache: dict) -> BennettKit:

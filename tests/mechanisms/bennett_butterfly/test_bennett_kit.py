@@ -375,3 +375,19 @@ def test_the_searched_layout_is_remembered_and_rebuilds_the_same_parts(kit, monk
         assert np.array_equal(a[name][0], b[name][0]) and np.array_equal(a[name][1], b[name][1]), name
     other = dataclasses.replace(kit.params, offset_step=kit.params.offset_step / 2)
     assert recall("bennett-layout", pickle.dumps(other, protocol=5)) is None
+
+
+def test_a_part_is_reused_only_under_the_numbers_that_weigh_and_lay_it():
+    """``kit._PartMemo`` (the parts a process built, reused by its later builds): a part built under a
+    design is handed back under the same key and numbers, and never under another density, infill,
+    wall, skin, overhang rule or least bed contact (each changes its masses or its print pose)."""
+    p = resolve_bennett(load_design(CFG))
+    key, built = ("link", "memo-test-part"), object()
+    A._PartMemo(p)[key] = built
+    assert A._PartMemo(p)[key] is built and key in A._PartMemo(dataclasses.replace(p))
+    for change in ({"density": p.density * 1.01}, {"infill": p.infill + 0.05}, {"print_wall": p.print_wall + 0.4},
+                   {"print_skin": p.print_skin + 0.2}, {"overhang_angle": p.overhang_angle + 0.1},
+                   {"min_contact": p.min_contact + 1.0}):
+        other = A._PartMemo(dataclasses.replace(p, **change))
+        assert key not in other and other.get(key) is None, change
+    assert ("link", "never built") not in A._PartMemo(p)
