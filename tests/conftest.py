@@ -1,5 +1,5 @@
 """Shared fixtures: each kit is built once per test session (per xdist worker), and the test
-files that share an expensive kit run on one worker (``SHARED``, with ``--dist loadgroup``)."""
+files that share an expensive kit run on one worker (``SHARED``, by the xdist scheduler at the end of this file)."""
 
 import atexit
 import os
