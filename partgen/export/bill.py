@@ -11,7 +11,7 @@ from .kit import group_parts, printed
 from ..geometry.solid import mesh_arrays
 from .assembly import assembly_section
 
-__all__ = ["bill_sections", "stock_items", "shopping_list", "printed_rows"]
+__all__ = ["bill_sections", "stock_items", "shopping_list", "printed_rows", "part_lines"]
 
 
 def bill_sections(kit: Kit, colours: dict[str, str], purchased: list, groups=None,
@@ -101,6 +101,13 @@ def stock_items(bought) -> list[tuple[str, int, str, list[str]]]:
 def printed_rows(man: dict) -> list[tuple[str, int, float, float]]:
     """(part, count, g each, g total) of the manifest's printed parts (solid)."""
     return [(p["name"], int(p["count"]), float(p["mass_g"]), float(p["mass_g"]) * int(p["count"])) for p in man["parts"]]
+
+
+def part_lines(man: dict) -> list[str]:
+    """A line per distinct part of the manifest, as `build` prints it: name, role, triangles, volume
+    (cm³), mass (g, solid) and bounding box (mm)."""
+    return [f"{p['name']:<8}{p['role']:<6}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 "
+            f"{p['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm" for p in man["parts"]]
 
 
 def shopping_list(man: dict, bought=()) -> str:

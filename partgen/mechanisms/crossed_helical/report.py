@@ -7,6 +7,7 @@ import math
 
 from ...core.findings import Result
 from ...core.protocol import Trace
+from ...export.bill import part_lines
 from .. import solid_pair
 from .contact import PAIR
 from .kit import CrossedKit, design_numbers, locking_text
@@ -24,8 +25,7 @@ def bill_text(spec: CrossedSpec, man: dict, dest, seconds: float) -> str:
              f"{math.degrees(p.helix[1]):g}° (right hand) on shafts at {math.degrees(p.shaft_angle):g}°, "
              f"{spec.centre_distance:.3f} mm apart; ratio {p.teeth[1]}:{p.teeth[0]} (input turns per output turn)"]
     lines.append(locking_text(spec))
-    lines += [f"{q['name']:<8}{q['role']:<6}{q['triangles']:>9} triangles {q['volume_mm3'] / 1000:8.2f} cm3 "
-              f"{q['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in q['bbox_mm'])} mm" for q in man["parts"]]
+    lines += part_lines(man)
     lines.append(f"wrote {dest}/ in {seconds:.2f} s")
     return "\n".join(lines)
 

@@ -7,6 +7,7 @@ import math
 
 from ...core.findings import Result
 from ...core.protocol import Trace
+from ...export.bill import part_lines
 from .kit import PairKit
 from .resolve import PairSpec
 
@@ -16,8 +17,7 @@ __all__ = ["bill_text", "report_sections", "subtitle", "assembly_steps"]
 def bill_text(spec: PairSpec, man: dict, dest, seconds: float) -> str:
     lines = [f"{spec.name}: {spec.gear1.teeth}/{spec.gear2.teeth} teeth, module {spec.gear1.system.module:g} mm, "
              f"centre distance {spec.centre_distance:.3f} mm"]
-    lines += [f"{p['name']:<8}{p['role']:<6}{p['triangles']:>9} triangles {p['volume_mm3'] / 1000:8.2f} cm3 "
-              f"{p['mass_g']:7.1f} g  {' x '.join(f'{x:.1f}' for x in p['bbox_mm'])} mm" for p in man["parts"]]
+    lines += part_lines(man)
     lines.append(f"wrote {dest}/ in {seconds:.2f} s")
     return "\n".join(lines)
 
