@@ -660,7 +660,7 @@ def crossed(tmp: Path) -> dict:
     from partgen.mechanisms.crossed_helical.contact import mesh_overlaps
     from partgen.mechanisms.crossed_helical.kit import build_crossed
     from partgen.mechanisms.crossed_helical.resolve import gear_spec
-    from partgen.testing import measure_spur_gear, mesh_problems, section_outline
+    from partgen.testing import measure_spur_gear, measure_worm_flanks, mesh_problems, section_outline
 
     def float32(solid) -> trimesh.Trimesh:
         v, f = mesh_arrays(solid)
@@ -690,21 +690,10 @@ def crossed(tmp: Path) -> dict:
 
     def thread_flanks(spec, kit) -> dict:
         """The worm's sections at three heights against the involute of its base circle turned by
-        z tan β / r, along the flank's normal (µm)."""
-        t, b = spec.gear1, spec.face_width[0]
-        mesh = float32(kit.part("gear1").solid)
-        rate = spec.pair.twist(0, b) / b
-        devs = []
-        for z in (-0.3 * b, 0.02 * b, 0.4 * b):
-            P = np.asarray(section_outline(mesh, z).exterior.coords)
-            seg = np.diff(P, axis=0)
-            dense = np.concatenate([P[:-1] + seg * s for s in np.linspace(0, 1, 20, endpoint=False)])
-            rr = np.hypot(*dense.T)
-            band = (rr > t.root_radius + 0.3) & (rr < t.tip_radius - 0.3)
-            a = np.arctan2(dense[band, 1], dense[band, 0]) - rate * z
-            phi = np.mod(a + math.pi, 2 * math.pi) - math.pi
-            devs.append((np.abs(phi) - t.flank_angle(rr[band])) * t.base_radius)
-        d = np.concatenate(devs)
+        z tan β / r, along the flank's normal (µm; partgen.testing.measure_worm_flanks)."""
+        b = spec.face_width[0]
+        d = measure_worm_flanks(float32(kit.part("gear1").solid), spec.gear1, spec.pair.twist(0, b) / b,
+                                (-0.3 * b, 0.02 * b, 0.4 * b))
         return {"flank_um": r(1000 * float(np.abs(d).max()), 1), "flank_mean_um": r(1000 * float(d.mean()), 1)}
 
     def shells(dest: Path, man: dict, envelope) -> str:

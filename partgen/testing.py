@@ -16,7 +16,7 @@ from shapely.geometry import Polygon
 from .design import involute
 
 __all__ = ["GearMeasurement", "section_outline", "measure_spur_gear", "BevelFlanks", "measure_bevel_flanks",
-           "mesh_problems"]
+           "measure_worm_flanks", "mesh_problems"]
 
 
 def section_outline(mesh: trimesh.Trimesh, z: float) -> Polygon:
@@ -153,6 +153,27 @@ def measure_bevel_flanks(mesh: trimesh.Trimesh, teeth: int, module: float, press
     dev = rho[sel] * np.sin(base) * (folded - psi)
     seen = len(np.unique(np.round(az[sel] / pitch).astype(int) % teeth))
     return BevelFlanks(dev, seen, (float(rho[sel].min()), float(rho[sel].max())) if sel.any() else (0.0, 0.0))
+
+
+def measure_worm_flanks(mesh: trimesh.Trimesh, thread, twist_per_mm: float, heights) -> np.ndarray:
+    """Measure a ZI worm's flanks on its mesh (in the worm's frame, its axis along z): its section at
+    each of ``heights`` (mm), 20 points along each edge, against the involute of its base circle turned
+    by ``twist_per_mm`` · z (rad/mm; tan β / r). ``thread``: its ``design.crossed_helical.ThreadSpec``
+    (``root_radius``, ``tip_radius``, ``base_radius`` mm, ``flank_angle(r)`` rad). Points within 0.3 mm
+    of the root and tip circles are left out. Returns each point's deviation (mm) along the flank's
+    normal (tangent to the base circle): r_b (|φ| − ψ(r)), φ its polar angle from the thread's centre
+    line; positive where the thread is thicker."""
+    devs = []
+    for z in heights:
+        P = np.asarray(section_outline(mesh, z).exterior.coords)
+        seg = np.diff(P, axis=0)
+        dense = np.concatenate([P[:-1] + seg * s for s in np.linspace(0, 1, 20, endpoint=False)])
+        r = np.hypot(*dense.T)
+        band = (r > thread.root_radius + 0.3) & (r < thread.tip_radius - 0.3)
+        a = np.arctan2(dense[band, 1], dense[band, 0]) - twist_per_mm * z
+        phi = np.mod(a + np.pi, 2 * np.pi) - np.pi
+        devs.append((np.abs(phi) - thread.flank_angle(r[band])) * thread.base_radius)
+    return np.concatenate(devs)
 
 
 def mesh_problems(mesh: trimesh.Trimesh, envelope=(406.0, 355.0, 406.0)) -> list[str]:

@@ -19,7 +19,7 @@ from partgen.mechanisms.crossed_helical.contact import contact_angles, designed_
 from partgen.mechanisms.crossed_helical.kit import build_crossed, locking
 from partgen.mechanisms.crossed_helical.mechanism import MECHANISM
 from partgen.mechanisms.crossed_helical.resolve import gear_spec, is_worm
-from partgen.testing import mesh_problems, section_outline
+from partgen.testing import measure_worm_flanks, mesh_problems
 
 
 @pytest.mark.parametrize("lead_deg", [5.0, 9.0, 9.2, 15.0, 30.0])
@@ -83,23 +83,13 @@ def test_worm_ratio_and_flanks(worm):
     c = contact_angles(kit, [0.0, 2 * math.pi], 1e-7)["ahead"]
     loaded = [float(spec.angle2(t)) + d for t, d in zip((0.0, 2 * math.pi), c)]
     assert abs(2 * math.pi / (loaded[1] - loaded[0])) == pytest.approx(30.0, rel=1e-6)
-    # the thread's sections at three heights: the involute turned by z tan β / r
-    t, b = spec.gear1, spec.face_width[0]
+    # the thread's sections at three heights: the involute turned by z tan β / r, along the flank's
+    # normal (tangent to the base circle)
+    b = spec.face_width[0]
     v, f = mesh_arrays(kit.part("gear1").solid)
     mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
-    rate = spec.pair.twist(0, b) / b
-    worst = 0.0
-    for z in (-0.3 * b, 0.02 * b, 0.4 * b):  # noqa: B007
-        P = np.asarray(section_outline(mesh, z).exterior.coords)
-        seg = np.diff(P, axis=0)
-        dense = np.concatenate([P[:-1] + seg * s for s in np.linspace(0, 1, 20, endpoint=False)])
-        r = np.hypot(*dense.T)
-        band = (r > t.root_radius + 0.3) & (r < t.tip_radius - 0.3)
-        a = np.arctan2(dense[band, 1], dense[band, 0]) - rate * z
-        phi = np.mod(a + math.pi, 2 * math.pi) - math.pi
-        # along the circle, times cos α_r = r_b / r: along the flank's normal (tangent to the base circle)
-        dev = (np.abs(phi) - t.flank_angle(r[band])) * r[band] * t.base_radius / r[band]
-        worst = max(worst, float(np.abs(dev).max()))
+    dev = measure_worm_flanks(mesh, spec.gear1, spec.pair.twist(0, b) / b, (-0.3 * b, 0.02 * b, 0.4 * b))
+    worst = float(np.abs(dev).max())
     assert worst < 0.006, worst  # mm: the chord tolerance 0.005 mm (slices and section) and float32
 
 
