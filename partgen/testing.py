@@ -15,14 +15,22 @@ from shapely.geometry import Polygon
 
 from .design import involute
 
-__all__ = ["GearMeasurement", "section_outline", "measure_spur_gear", "BevelFlanks", "measure_bevel_flanks",
+__all__ = ["as_trimesh", "GearMeasurement", "section_outline", "measure_spur_gear", "BevelFlanks", "measure_bevel_flanks",
            "measure_worm_flanks", "mesh_problems"]
 
 
-def section_outline(mesh: trimesh.Trimesh, z: float) -> Polygon:
+def as_trimesh(mesh) -> trimesh.Trimesh:
+    """A trimesh mesh of ``mesh`` (a ``trimesh.Trimesh``, returned as it is, or anything with
+    ``vertices`` and ``faces``, such as the ``export.stl.Mesh`` a kit's parts are written from)."""
+    if isinstance(mesh, trimesh.Trimesh):
+        return mesh
+    return trimesh.Trimesh(np.asarray(mesh.vertices), np.asarray(mesh.faces), process=False)
+
+
+def section_outline(mesh, z: float) -> Polygon:
     """Largest polygon (with the rings inside it as holes) of the mesh's section by the plane at
-    height z, in the mesh's own x, y, mm."""
-    sec = mesh.section(plane_origin=[0, 0, z], plane_normal=[0, 0, 1])
+    height z, in the mesh's own x, y, mm (``mesh``: as ``as_trimesh`` takes)."""
+    sec = as_trimesh(mesh).section(plane_origin=[0, 0, z], plane_normal=[0, 0, 1])
     if sec is None:
         raise ValueError(f"the plane z = {z} misses the mesh")
     rings = sorted((Polygon(np.asarray(d)[:, :2]) for d in sec.discrete if len(d) >= 3), key=lambda p: -p.area)
@@ -119,7 +127,7 @@ def _spherical_involute_azimuth(p: np.ndarray, base: float) -> np.ndarray:
     return np.arctan2(P[1], P[0])
 
 
-def measure_bevel_flanks(mesh: trimesh.Trimesh, teeth: int, module: float, pressure_angle: float,
+def measure_bevel_flanks(mesh, teeth: int, module: float, pressure_angle: float,
                          pitch_angle: float, thinning: float, face_width: float, addendum: float,
                          dedendum: float, band_mm: float = 0.15, order: int = 4) -> BevelFlanks:
     """Measure a straight bevel gear's flanks on its mesh (in the gear's frame: the apex at the origin,
@@ -155,7 +163,7 @@ def measure_bevel_flanks(mesh: trimesh.Trimesh, teeth: int, module: float, press
     return BevelFlanks(dev, seen, (float(rho[sel].min()), float(rho[sel].max())) if sel.any() else (0.0, 0.0))
 
 
-def measure_worm_flanks(mesh: trimesh.Trimesh, thread, twist_per_mm: float, heights) -> np.ndarray:
+def measure_worm_flanks(mesh, thread, twist_per_mm: float, heights) -> np.ndarray:
     """Measure a ZI worm's flanks on its mesh (in the worm's frame, its axis along z): its section at
     each of ``heights`` (mm), 20 points along each edge, against the involute of its base circle turned
     by ``twist_per_mm`` · z (rad/mm; tan β / r). ``thread``: its ``design.crossed_helical.ThreadSpec``
@@ -176,13 +184,14 @@ def measure_worm_flanks(mesh: trimesh.Trimesh, thread, twist_per_mm: float, heig
     return np.concatenate(devs)
 
 
-def mesh_problems(mesh: trimesh.Trimesh, envelope=(406.0, 355.0, 406.0)) -> list[str]:
-    """What stops a mesh from printing as a solid: not one closed, oriented manifold shell once
-    written as an STL and read back as a slicer does (export.verify), not watertight, inconsistent
-    winding, non-positive volume, below the build plate, larger than the envelope in any axis
-    order."""
+def mesh_problems(mesh, envelope=(406.0, 355.0, 406.0)) -> list[str]:
+    """What stops a mesh (as ``as_trimesh`` takes) from printing as a solid: not one closed, oriented
+    manifold shell once written as an STL and read back as a slicer does (export.verify), not
+    watertight, inconsistent winding, non-positive volume, below the build plate, larger than the
+    envelope in any axis order."""
     from .export.verify import mesh_report, read_stl
 
+    mesh = as_trimesh(mesh)
     out = list(mesh_report(*read_stl(trimesh.exchange.stl.export_stl(mesh))).problems())
     if not mesh.is_watertight:
         out.append("not watertight")

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+import shapely.ops
 
 from ..core.protocol import CheckedKit as Kit  # what the shared checks read of a kit
 from ..geometry.measure import Slab, intersection, min_gap, place2d, slabs

@@ -42,7 +42,7 @@ def bill_sections(kit: Kit, colours: dict[str, str], purchased: list, groups=Non
         pictures.update({it.part.name: pic for it in g})
         printed_as.update({it.part.name: p.name for it in g[1:]})  # the bill lists the copies under g's first name
         gear = p.gear
-        com = m.center_mass if m.is_volume else m.centroid
+        com = m.center_mass if m.volume > 0 else m.triangles.mean(axis=(0, 1))  # no volume: the corners' mean
         rows.append([R.img(pic, p.name), p.name, p.role, len(g), " × ".join(f"{x:.1f}" for x in m.extents),
                      round(m.volume / 1000, 3), round(m.volume * density, 3),
                      "(" + ", ".join(f"{c:.1f}" for c in com) + ")",

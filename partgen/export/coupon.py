@@ -7,9 +7,6 @@ from __future__ import annotations
 import html
 from pathlib import Path
 
-import numpy as np
-import trimesh
-
 from ..design.coupon import (BAR, CALIPER_D, FEATURES, GEAR, GEAR_BACKLASH, GEAR_BORE_CLEARANCE_MM, HOLE_D, PRESS,
                              RUNNING, Coupon)
 from ..errors import MeshError
@@ -17,6 +14,7 @@ from ..geometry.solid import print_arrays
 from .outputs import OutputClaim
 from .plates import footprint, layout, plate_3mf, plate_meshes
 from .render import render
+from .stl import Mesh, stl_bytes, stored_mesh
 from .verify import mesh_report, read_stl
 
 __all__ = ["BED_MM", "MARGIN_MM", "TEMPLATE_VERSION", "coupon_meshes", "coupon_layout", "results_template",
@@ -28,14 +26,14 @@ TEMPLATE_VERSION = 1
 COLOURS = {"plate": "#4a90d9", "key": "#e0a030", "gear": "#50a860", "bar": "#b060c0"}
 
 
-def coupon_meshes(solids: dict) -> dict[str, tuple[trimesh.Trimesh, bytes, int]]:
+def coupon_meshes(solids: dict) -> dict[str, tuple[Mesh, bytes, int]]:
     """name -> (mesh as its STL stores it, STL bytes, copies); raises MeshError unless every STL is
     one closed, oriented manifold shell."""
     out = {}
     for name, (solid, count) in solids.items():
         v, f, _ = print_arrays(solid, False)
-        mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
-        stl = trimesh.exchange.stl.export_stl(mesh)
+        mesh = stored_mesh(v, f)
+        stl = stl_bytes(mesh)
         rep = mesh_report(*read_stl(stl))
         if not rep.ok:
             raise MeshError(f"coupon part {name}: not one closed, oriented manifold shell "

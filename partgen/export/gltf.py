@@ -39,11 +39,11 @@ import struct
 from dataclasses import dataclass
 
 import numpy as np
-import trimesh
 
 from ..core.parts import Part
 from ..core.protocol import Kit, Motion
 from ..design.graph import components
+from .stl import Mesh
 
 __all__ = ["MAX_ERROR_MM", "MIN_KEYS", "MAX_KEYS", "CREASE_DEG", "Instance", "assembly_glb", "read_glb",
            "role_palette", "Sampling", "sample_motion", "motion_of"]
@@ -67,7 +67,7 @@ class Instance:
     node-from-part-local transform (the printed STL's frame is the node's: ``local_from_print``)."""
 
     part: Part
-    mesh: trimesh.Trimesh
+    mesh: Mesh
     local_from_mesh: np.ndarray
 
 

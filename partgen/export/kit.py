@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import trimesh
 
 from ..core.protocol import Kit, Motion
 from ..geometry.parts import Part
@@ -21,6 +20,7 @@ from ..geometry.solid import mesh_arrays, print_arrays
 from . import gltf
 from .gltf import Instance
 from .outputs import OutputClaim, atomic_dir
+from .stl import Mesh, stl_bytes, stored_mesh
 from .verify import mesh_report, read_stl
 
 __all__ = ["PrintedPart", "printed", "group_parts", "manifest", "built_with", "verify_parts", "write_kit", "atomic_dir"]
@@ -32,7 +32,7 @@ class PrintedPart:
 
     part: Part
     stl: bytes
-    mesh: trimesh.Trimesh
+    mesh: Mesh
     local_from_print: np.ndarray
 
 
@@ -70,9 +70,8 @@ def printed(part: Part, printer=None) -> PrintedPart:
     solid, _ = compensated(part, printer)
     v, f, print_from_local = print_arrays(solid, part.print_flip)
     # the mesh exactly as the STL stores it (float32), so the manifest describes the file
-    mesh = trimesh.Trimesh(v.astype(np.float32).astype(np.float64), f, process=False)
-    stl = trimesh.exchange.stl.export_stl(mesh)
-    return PrintedPart(part, stl, mesh, np.linalg.inv(print_from_local))
+    mesh = stored_mesh(v, f)
+    return PrintedPart(part, stl_bytes(mesh), mesh, np.linalg.inv(print_from_local))
 
 
 def group_parts(items: list[PrintedPart]) -> list[list[PrintedPart]]:
@@ -169,7 +168,7 @@ def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] =
     for p in bought:
         if id(p.solid) not in solids:
             v, f = mesh_arrays(p.solid)
-            solids[id(p.solid)] = trimesh.Trimesh(v, f, process=False)
+            solids[id(p.solid)] = Mesh(v, f)
         instances.append(Instance(p, solids[id(p.solid)], np.eye(4)))
     for grp in groups:
         for it in grp:

@@ -37,11 +37,11 @@ from pathlib import Path
 
 import numpy as np
 import shapely
-import trimesh
 from shapely.geometry import Polygon, box
 
 from ..core.quantise import RESOLUTION_MM
 from ..core.transforms import rot2
+from .stl import Mesh
 from .threemf import Object3MF, write_3mf
 
 __all__ = ["Placement", "Layout", "DoesNotFit", "footprint", "best_turn", "layout", "plate_meshes",
@@ -80,7 +80,7 @@ def instance_name(p: Placement) -> str:
     return f"{p.name}#{p.copy}"
 
 
-def _hull(mesh: trimesh.Trimesh):
+def _hull(mesh: Mesh):
     """Convex hull (shapely) of the mesh's vertices projected on xy."""
     v = np.asarray(mesh.vertices, dtype=float)
     if len(v) < 3:
@@ -93,13 +93,13 @@ def _hull(mesh: trimesh.Trimesh):
     return shapely.linestrings(xy).convex_hull
 
 
-def footprint(mesh: trimesh.Trimesh, margin: float) -> Polygon:
+def footprint(mesh: Mesh, margin: float) -> Polygon:
     """The part's footprint on the plate: convex hull of its vertices on xy, grown by margin/2
     (round joins as 8 chords per quarter circle, which lie at most 0.5 % of margin/2 inside)."""
     return _hull(mesh).buffer(margin / 2.0, quad_segs=8)
 
 
-def fits_plate(mesh: trimesh.Trimesh, plate_xy: tuple[float, float], margin: float = 5.0) -> bool:
+def fits_plate(mesh: Mesh, plate_xy: tuple[float, float], margin: float = 5.0) -> bool:
     """Whether a part, its mesh as it prints, fits a ``plate_xy`` = (W, H) mm plate at some turn about
     z with ``margin / 2`` mm to the edge — as ``layout`` would place it (``best_turn``: certified)."""
     hull = np.asarray(_hull(mesh).exterior.coords)
@@ -305,7 +305,7 @@ def _turns(hull: np.ndarray, W: float, H: float, grow: float, angles: int, free:
     return out
 
 
-def layout(items: list[tuple[str, trimesh.Trimesh, int]], plate_xy: tuple[float, float],
+def layout(items: list[tuple[str, Mesh, int]], plate_xy: tuple[float, float],
            margin: float = 5.0, angles: int = 4, free: bool = True) -> Layout:
     """Pack ``count`` copies of every ``(name, mesh, count)`` onto as few plates as it can.
 
@@ -398,22 +398,22 @@ def placement_matrix(p: Placement) -> np.ndarray:
     return m
 
 
-def _place(mesh: trimesh.Trimesh, p: Placement) -> trimesh.Trimesh:
+def _place(mesh: Mesh, p: Placement) -> Mesh:
     r = rot2(p.angle)
     v = np.asarray(mesh.vertices, dtype=float)
     out = np.empty_like(v)
     out[:, :2] = v[:, :2] @ r.T + (p.x, p.y)
     out[:, 2] = v[:, 2]
-    return trimesh.Trimesh(out, np.asarray(mesh.faces), process=False)
+    return Mesh(out, mesh.faces)
 
 
-def plate_meshes(lay: Layout, meshes: dict[str, trimesh.Trimesh]
-                 ) -> list[list[tuple[str, trimesh.Trimesh]]]:
+def plate_meshes(lay: Layout, meshes: dict[str, Mesh]
+                 ) -> list[list[tuple[str, Mesh]]]:
     """Every plate's parts moved into place (rotation about z, then translation), named ``M4#2``."""
     return [[(instance_name(p), _place(meshes[p.name], p)) for p in plate] for plate in lay.plates]
 
 
-def plate_3mf(plate: tuple[Placement, ...], meshes: dict[str, trimesh.Trimesh], design: str = "",
+def plate_3mf(plate: tuple[Placement, ...], meshes: dict[str, Mesh], design: str = "",
               material: str = "", description: str = "") -> bytes:
     """The 3MF of one plate: each distinct part on it once, as a mesh object named after the part
     (in its print orientation, as its STL holds it), and each copy as a build item placing that

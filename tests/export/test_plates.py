@@ -22,6 +22,7 @@ import trimesh
 from shapely.geometry import MultiPoint, box
 
 from partgen.export import plates as P
+from partgen.testing import as_trimesh
 
 ROOT = Path(__file__).resolve().parents[2]
 DESIGNS = Path(__file__).resolve().parents[1] / "designs"
@@ -268,7 +269,7 @@ def test_3mf_reloads_with_trimesh(items, layouts):
     placed = scene.dump()
     assert len(placed) == len(plate)
     assert sum(g.volume for g in placed) == pytest.approx(sum(meshes[p.name].volume for p in plate), rel=1e-6)
-    moved = trimesh.util.concatenate([m for _, m in P.plate_meshes(P.Layout((plate,), SMALL), meshes)[0]])
+    moved = trimesh.util.concatenate([as_trimesh(m) for _, m in P.plate_meshes(P.Layout((plate,), SMALL), meshes)[0]])
     assert np.allclose(trimesh.util.concatenate(placed).bounds, moved.bounds, atol=1e-4)
 
 
