@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.background import Background
 from ..core.protocol import Kit, Motion
 from ..geometry.parts import Part
 from ..errors import MeshError
@@ -204,6 +205,22 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
             done[key] = printed(p, kit.printer)
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
     groups = group_parts(items)
+    bought = [p for p in kit.parts if not p.printed]
+    # assembly.glb is made in a forked child while the parts are verified and weighed here (core.background)
+    with Background(lambda: assembly_glb(kit, groups, bought, motion, colours)) as glb:
+        man = _verified_manifest(kit, groups, design, bought)
+        files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
+        files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
+        files["assembly.glb"] = glb.result()
+    files.update(extra_files or {})
+    with atomic_dir(dest) as tmp:
+        for name, data in files.items():
+            (tmp / name).write_bytes(data)
+    return man
+
+
+def _verified_manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict, bought: list[Part]) -> dict:
+    """``verify_parts``, then the manifest (with what was compensated, and the purchased parts)."""
     verify_parts(groups, str(design.get("name", kit.name)))
     b = biases(kit.printer)
     if b is not None:  # say what was compensated, and what was printed as designed
@@ -215,14 +232,6 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
             "compensated": sorted(n for n, s in state.items() if s),
             "as_designed": sorted(n for n, s in state.items() if not s)}}
     man = manifest(kit, groups, design)
-    bought = [p for p in kit.parts if not p.printed]
     if bought:
         man["purchased"] = [{"name": p.name, "role": p.role, **dict(p.info)} for p in bought]
-    files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
-    files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
-    files["assembly.glb"] = assembly_glb(kit, groups, bought, motion, colours)
-    files.update(extra_files or {})
-    with atomic_dir(dest) as tmp:
-        for name, data in files.items():
-            (tmp / name).write_bytes(data)
     return man
