@@ -92,8 +92,8 @@ def load(target, raw: LoadedDesign | None = None, over: Overrides | None = None)
     mech = REGISTRY[raw.design.kind]
     auto = None
     if autoplay.wants_auto(raw):
-        mech.resolve(autoplay.at_start(raw))  # the design's own errors first (exit 2 before any build)
-        raw, auto = autoplay.resolve_auto(raw, mech)
+        start = mech.resolve(autoplay.at_start(raw))  # the design's own errors first (exit 2 before any build)
+        raw, auto = autoplay.resolve_auto(raw, mech, start)
     return Loaded(raw, mech, mech.resolve(raw), kit_dir, auto)
 
 

@@ -133,9 +133,10 @@ def _slope(role: str, model) -> np.ndarray:
     return hole_slope(model)
 
 
-def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
+def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign, dict]:
     """(the design with the chosen numbers, the allocation: each key's value, the P(jam) it reaches,
-    its interval, the target, the samples, what one more step of each would buy)."""
+    its interval, the target, the samples, what one more step of each would buy). ``start_spec``:
+    ``mech.resolve(at_start(raw))`` when the caller has it already."""
     key = (str(Path(raw.path).resolve()), raw.digest())  # the path too: a design may name files beside it
     if key in _DONE:
         values, alloc = _DONE[key]
@@ -145,7 +146,7 @@ def resolve_auto(raw: LoadedDesign, mech) -> tuple[LoadedDesign, dict]:
     if hook is None:
         raise ConfigError(raw.path, next(iter(keys)), f"auto needs a tolerance model: a {mech.kind} design has none yet")
     start = at_start(raw)
-    spec = mech.resolve(start)
+    spec = mech.resolve(start) if start_spec is None else start_spec
     what = raw.digest().encode() + b"\0" + pickle.dumps(spec, protocol=5)
     known = recall("auto-play", what)
     if known is not None:
