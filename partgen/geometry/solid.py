@@ -8,7 +8,7 @@ import shapely
 from shapely.geometry import MultiPolygon, Polygon
 
 __all__ = ["cylinder", "cross_section", "extrude", "slab", "union", "prisms", "mesh_arrays", "FLIP", "print_arrays",
-           "float32_sound"]
+           "float32_sound", "pack", "unpack"]
 
 
 def _rings(geom) -> list[np.ndarray]:
@@ -74,6 +74,23 @@ def mesh_arrays(solid: m3d.Manifold) -> tuple[np.ndarray, np.ndarray]:
     """vertices (n, 3) float64 mm and faces (m, 3) int64 of a solid."""
     mesh = solid.to_mesh64() if hasattr(solid, "to_mesh64") else solid.to_mesh()
     return np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3], np.asarray(mesh.tri_verts, dtype=np.int64)
+
+
+_MESH_FIELDS = ("vert_properties", "tri_verts", "merge_from_vert", "merge_to_vert", "run_index", "run_original_id",
+                "run_transform", "run_flags", "face_id", "halfedge_tangent")
+
+
+def pack(solid: m3d.Manifold) -> dict:
+    """A solid as plain numpy arrays (its float64 mesh, every field), to pickle across processes;
+    ``unpack`` makes the same solid again (the same vertices and triangles in the same order)."""
+    mesh = solid.to_mesh64()
+    return {k: np.array(getattr(mesh, k)) for k in _MESH_FIELDS}
+
+
+def unpack(data: dict) -> m3d.Manifold:
+    """The solid ``pack`` packed."""
+    return m3d.Manifold(m3d.Mesh64(**{k: np.ascontiguousarray(v) if v.size or k in _MESH_FIELDS[:2] else None
+                                      for k, v in data.items()}))
 
 
 def prisms(items) -> m3d.Manifold:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...core.background import Background
 from ...core.parts import Bore, Contact, Stock
 from ...core.quantise import r6
 from ...core.protocol import ParamsKit
@@ -30,6 +31,7 @@ from ...geometry.measure import empty_parts
 from ...geometry import parts as P
 from ...geometry.parts import DFit, Part
 from ...geometry.printing import least_support_flip
+from ...geometry.solid import pack, unpack
 
 if TYPE_CHECKING:  # annotations only: the resolver builds on these parameters
     from ...config.loader import LoadedDesign
@@ -156,143 +158,156 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
             part = replace(part, print_flip=least_support_flip(part.solid, params.printer.overhang_deg))
         parts.append(part)
 
-    # gears
-    def fixed(name: str, spec):
+    # gears. The fixed gears (each clocked: no two alike) are made in a forked child (core.background)
+    # while the rest of the kit is made here, and take their places in the part list at the end
+    fixed_specs = {"G1": mech.G1, **{f"G{s.j + 1}": s.G for s in mech.stages}}
+
+    def fixed_solid(name: str, spec):
         collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
-        solid = P.fixed_gear(spec, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, clock[name], tol)
-        add(Part(name, "gear", solid, gear=spec, clocking=clock[name], bores=(hub_bore,)))
+        return P.fixed_gear(spec, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, clock[name], tol)
 
-    # G's round bore runs through teeth, collar and boss: the post comes up into it from below
-    hub_bore = Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f + g + t + g)
-    gear_bores = {"D": Bore("axle", (0.0, 0.0, 0.0), UP, post.pin_diameter, f),
-                  "round": Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f)}
+    with Background(lambda: {name: pack(fixed_solid(name, spec)) for name, spec in fixed_specs.items()}) as made:
+        slots: dict[str, int] = {}
 
-    holes = {"D": post.hole(FEATURE_TOL)}
+        def fixed(name: str, spec):
+            say(name)
+            slots[name] = len(parts)
+            parts.append(None)  # filled once the child has made it
 
-    def hole_of(name: str, hole: str):
-        """A part's bore: the D-hole, or the round running bore of its own joint's clearance."""
-        if hole == "D":
-            return holes["D"]
-        r = params.bore_of(name) / 2
-        if r not in holes:
-            holes[r] = P.disc(r, FEATURE_TOL, hole=True)
-        return holes[r]
+        # G's round bore runs through teeth, collar and boss: the post comes up into it from below
+        hub_bore = Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f + g + t + g)
+        gear_bores = {"D": Bore("axle", (0.0, 0.0, 0.0), UP, post.pin_diameter, f),
+                      "round": Bore("post", (0.0, 0.0, 0.0), UP, 2 * ra, f)}
 
-    bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
+        holes = {"D": post.hole(FEATURE_TOL)}
 
-    def loose(name: str, spec, hole: str):
-        key = (spec, hole, params.bore_of(name) if hole == "round" else None)
-        if key not in bored:
-            bored[key] = P.bored_gear(spec, f, hole_of(name, hole))
-        add(Part(name, "gear", bored[key], gear=spec, bores=(gear_bores[hole],)))
+        def hole_of(name: str, hole: str):
+            """A part's bore: the D-hole, or the round running bore of its own joint's clearance."""
+            if hole == "D":
+                return holes["D"]
+            r = params.bore_of(name) / 2
+            if r not in holes:
+                holes[r] = P.disc(r, FEATURE_TOL, hole=True)
+            return holes[r]
 
-    fixed("G1", mech.G1)
-    loose("drive", mech.drive, "D")
-    for s in mech.stages:
-        loose(f"D{s.j}", s.D, "D")
-        loose(f"M{s.j}", s.M, "round")
-        fixed(f"G{s.j + 1}", s.G)
-    params_belts = mech.belt_stages and _belts(mech)
-    for s in mech.belt_stages:
-        bs = params_belts
-        prof = s.D.profile
-        for name, pulley, hole in ((f"D{s.j}", s.D, "D"), (f"G{s.j + 1}", s.G, "round")):
-            section = P.pulley_outline(pulley.teeth, prof.pitch, prof.pitch_line_offset, prof.groove_depth,
-                                       prof.groove_radius, FEATURE_TOL)
-            body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f,
-                                 hole_of(name, hole), FEATURE_TOL)
-            if name[0] == "G":
-                collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
-                body = P.fixed_hub(body, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
-            add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
-                                                 ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4))),
-                     bores=(hub_bore if name[0] == "G" else gear_bores[hole],)))
-        if s.tensioner is not None:
-            r, rt = s.tensioner_radius, params.bore_of(f"T{s.j}") / 2
-            roller = P.prisms([(P.annulus(rt, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
-                               (P.annulus(rt, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
-                               (P.annulus(rt, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
-            add(Part(f"T{s.j}", "idler", roller, bores=(gear_bores["round"],)))
-        _, path = belt_path_of(s, prof)
-        z0 = bs.flange_thickness + 0.1
-        band = P.belt_band(path, prof.pitch_line_offset + prof.groove_depth, prof.back_height, z0, z0 + prof.width)
-        add(Part(f"belt{s.j}", "belt", band, printed=False,
-                 info=(("profile", prof.name), ("teeth", s.belt_teeth), ("length_mm", s.belt_teeth * prof.pitch),
-                       ("width_mm", prof.width)),
-                 stock=(Stock(f"{prof.name} closed timing belt", 1, f"{s.belt_teeth} teeth, "
-                              f"{s.belt_teeth * prof.pitch:.4g} mm pitch length, {prof.width:.4g} mm wide"),)))
+        bored: dict = {}  # identical gears share one solid (the kit prints it `count` times)
 
-    # link plates
-    if params.pen_holder_height < PEN_FLOOR + 1.0:
-        raise DesignError(f"{params.pen_holder_height:g} mm leaves no bore above the holder's {PEN_FLOOR:g} mm floor: "
-                          f"make it at least {PEN_FLOOR + 1.0:g} mm", "pen.holder_height_mm")
-    pen_spigot = DFit(params.pen_diameter / 2 + PEN_WALL, jn.press_clearance)
-    prox_r = rb + jn.press_clearance / 2 + params.boss_wall
-    for j, link in enumerate(mech.chain.links, 1):
-        S, Pz = link.length, st.plate_z(j)
-        feats, idler, distal_hole, posts = [], None, None, []
-        if j < n:
-            stage = (mech.stages or mech.belt_stages)[j - 1]
-            top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
-            # thrust rings are discs the post or pin runs through: an annulus would share its inner
-            # wall with the post's, and two coincident walls unite into a zero-width crack
-            feats += [(P.disc(rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
-            posts.append(P.shaft(post, [("round", t, top - Pz)] + ([("D", top - Pz, top - Pz + f)] if j + 1 < n else []),
-                                 FEATURE_TOL, (S, 0.0)))
-            c = stage.idler if mech.stages else stage.tensioner
-            if c is not None:
-                feats += [(P.disc(rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
-                idler = (c, ra + params.boss_wall)
-            distal = (S, ra + params.boss_wall)
-        else:
-            distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
-            distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
-        solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole, posts)
-        # G_j's D-boss presses up into the proximal hole; the pen holder's spigot down into the last distal one
-        bores = (Bore("G boss", (0.0, 0.0, 0.0), UP, boss.pin_diameter, t),)
-        if distal_hole is not None:
-            bores += (Bore("pen spigot", (S, 0.0, t), DOWN, pen_spigot.pin_diameter, t),)
-        add(Part(f"B{j}", "link", solid, bores=bores))
+        def loose(name: str, spec, hole: str):
+            key = (spec, hole, params.bore_of(name) if hole == "round" else None)
+            if key not in bored:
+                bored[key] = P.bored_gear(spec, f, hole_of(name, hole))
+            add(Part(name, "gear", bored[key], gear=spec, bores=(gear_bores[hole],)))
 
-    # base, legs, drive axle, crank, pen holder
-    bt = params.base_thickness
-    dx, dy = mech.drive_centre
-    a_drive = math.hypot(dx, dy)
-    u = np.array([dx, dy]) / a_drive
-    v = np.array([-u[1], u[0]])
-    sweep = params.crank_radius + HANDLE_R + 4.0
-    w = sweep + LEG_R + 2.0
-    legs = [tuple(float(q) for q in s * u + sgn * w * v) for s in (-LEG_R, a_drive + LEG_R) for sgn in (1, -1)]
-    crank_depth = g + CRANK_THICKNESS + HANDLE_LEN
-    if params.leg_height < crank_depth + 3.0:
-        raise DesignError(f"legs of {params.leg_height:g} mm leave no room under the base for the crank "
-                          f"(needs {crank_depth + 3.0:g} mm)", "base.leg_height_mm")
-    outline = P.hull_of_discs([((0.0, 0.0), ra + params.boss_wall + 4.0), ((dx, dy), rb + params.boss_wall)]
-                              + [(c, LEG_R + 2.0) for c in legs], FEATURE_TOL)
-    holes = [P.disc(params.bore_of("drive_axle") / 2, FEATURE_TOL, (dx, dy), hole=True)] + [
-        P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c, hole=True)
-                                                                   for c in legs]
-    outline = outline.difference(P.union2d(holes))
-    top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
-    feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(params.bore_of("drive_axle") / 2, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
-    ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
-    base_bores = (Bore("drive axle", (dx, dy, g), DOWN, 2 * ra, g + bt),) + tuple(
-        Bore(f"leg{i + 1} peg", (c[0], c[1], -bt), UP, 2 * ra, bt) for i, c in enumerate(legs))
-    add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post]), bores=base_bores))
-    leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
-    for i in range(len(legs)):
-        add(Part(f"leg{i + 1}", "leg", leg_solid))
-    zc = -bt - g
-    add(Part("drive_axle", "axle", P.drive_axle(post, [("D", zc - CRANK_THICKNESS, zc), ("round", zc, g), ("D", g, g + f)],
-                                                FEATURE_TOL)))
-    add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
-                                       HANDLE_LEN, FEATURE_TOL),
-             bores=(Bore("drive axle", (0.0, 0.0, 0.0), DOWN, post.pin_diameter, CRANK_THICKNESS),)))
-    add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
-                                                      (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, PEN_FLOOR, FEATURE_TOL),
-             bores=(Bore("pen", (0.0, 0.0, t + params.pen_holder_height), DOWN, params.pen_diameter,
-                                          params.pen_holder_height - PEN_FLOOR),)))
+        fixed("G1", mech.G1)
+        loose("drive", mech.drive, "D")
+        for s in mech.stages:
+            loose(f"D{s.j}", s.D, "D")
+            loose(f"M{s.j}", s.M, "round")
+            fixed(f"G{s.j + 1}", s.G)
+        params_belts = mech.belt_stages and _belts(mech)
+        for s in mech.belt_stages:
+            bs = params_belts
+            prof = s.D.profile
+            for name, pulley, hole in ((f"D{s.j}", s.D, "D"), (f"G{s.j + 1}", s.G, "round")):
+                section = P.pulley_outline(pulley.teeth, prof.pitch, prof.pitch_line_offset, prof.groove_depth,
+                                           prof.groove_radius, FEATURE_TOL)
+                body = P.pulley_body(section, pulley.outside_radius + bs.flange_height, bs.flange_thickness, f,
+                                     hole_of(name, hole), FEATURE_TOL)
+                if name[0] == "G":
+                    collar_r = max(min(rb + 2.0, pulley.root_radius - 0.5), collar_min)
+                    body = P.fixed_hub(body, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, 0.0, FEATURE_TOL)
+                add(Part(name, "pulley", body, info=(("teeth", pulley.teeth), ("profile", prof.name),
+                                                     ("pitch_diameter_mm", round(2 * pulley.pitch_radius, 4))),
+                         bores=(hub_bore if name[0] == "G" else gear_bores[hole],)))
+            if s.tensioner is not None:
+                r, rt = s.tensioner_radius, params.bore_of(f"T{s.j}") / 2
+                roller = P.prisms([(P.annulus(rt, r + bs.flange_height, FEATURE_TOL), 0.0, bs.flange_thickness),
+                                   (P.annulus(rt, r, FEATURE_TOL), bs.flange_thickness, f - bs.flange_thickness),
+                                   (P.annulus(rt, r + bs.flange_height, FEATURE_TOL), f - bs.flange_thickness, f)])
+                add(Part(f"T{s.j}", "idler", roller, bores=(gear_bores["round"],)))
+            _, path = belt_path_of(s, prof)
+            z0 = bs.flange_thickness + 0.1
+            band = P.belt_band(path, prof.pitch_line_offset + prof.groove_depth, prof.back_height, z0, z0 + prof.width)
+            add(Part(f"belt{s.j}", "belt", band, printed=False,
+                     info=(("profile", prof.name), ("teeth", s.belt_teeth), ("length_mm", s.belt_teeth * prof.pitch),
+                           ("width_mm", prof.width)),
+                     stock=(Stock(f"{prof.name} closed timing belt", 1, f"{s.belt_teeth} teeth, "
+                                  f"{s.belt_teeth * prof.pitch:.4g} mm pitch length, {prof.width:.4g} mm wide"),)))
 
+        # link plates
+        if params.pen_holder_height < PEN_FLOOR + 1.0:
+            raise DesignError(f"{params.pen_holder_height:g} mm leaves no bore above the holder's {PEN_FLOOR:g} mm floor: "
+                              f"make it at least {PEN_FLOOR + 1.0:g} mm", "pen.holder_height_mm")
+        pen_spigot = DFit(params.pen_diameter / 2 + PEN_WALL, jn.press_clearance)
+        prox_r = rb + jn.press_clearance / 2 + params.boss_wall
+        for j, link in enumerate(mech.chain.links, 1):
+            S, Pz = link.length, st.plate_z(j)
+            feats, idler, distal_hole, posts = [], None, None, []
+            if j < n:
+                stage = (mech.stages or mech.belt_stages)[j - 1]
+                top = st.layer(j + 1) if j + 1 < n else st.plate_z(j + 1) + t + g
+                # thrust rings are discs the post or pin runs through: an annulus would share its inner
+                # wall with the post's, and two coincident walls unite into a zero-width crack
+                feats += [(P.disc(rb, FEATURE_TOL, (S, 0.0)), t, t + g)]
+                posts.append(P.shaft(post, [("round", t, top - Pz)] + ([("D", top - Pz, top - Pz + f)] if j + 1 < n else []),
+                                     FEATURE_TOL, (S, 0.0)))
+                c = stage.idler if mech.stages else stage.tensioner
+                if c is not None:
+                    feats += [(P.disc(rb, FEATURE_TOL, c), t, t + g), (P.disc(ra, FEATURE_TOL, c), t, t + g + f)]
+                    idler = (c, ra + params.boss_wall)
+                distal = (S, ra + params.boss_wall)
+            else:
+                distal_hole = P.translate2d(pen_spigot.hole(FEATURE_TOL), S, 0.0)
+                distal = (S, pen_spigot.radius + jn.press_clearance / 2 + params.boss_wall)
+            solid = P.link_plate(S, t, boss.hole(FEATURE_TOL), prox_r, distal, idler, feats, FEATURE_TOL, distal_hole, posts)
+            # G_j's D-boss presses up into the proximal hole; the pen holder's spigot down into the last distal one
+            bores = (Bore("G boss", (0.0, 0.0, 0.0), UP, boss.pin_diameter, t),)
+            if distal_hole is not None:
+                bores += (Bore("pen spigot", (S, 0.0, t), DOWN, pen_spigot.pin_diameter, t),)
+            add(Part(f"B{j}", "link", solid, bores=bores))
+
+        # base, legs, drive axle, crank, pen holder
+        bt = params.base_thickness
+        dx, dy = mech.drive_centre
+        a_drive = math.hypot(dx, dy)
+        u = np.array([dx, dy]) / a_drive
+        v = np.array([-u[1], u[0]])
+        sweep = params.crank_radius + HANDLE_R + 4.0
+        w = sweep + LEG_R + 2.0
+        legs = [tuple(float(q) for q in s * u + sgn * w * v) for s in (-LEG_R, a_drive + LEG_R) for sgn in (1, -1)]
+        crank_depth = g + CRANK_THICKNESS + HANDLE_LEN
+        if params.leg_height < crank_depth + 3.0:
+            raise DesignError(f"legs of {params.leg_height:g} mm leave no room under the base for the crank "
+                              f"(needs {crank_depth + 3.0:g} mm)", "base.leg_height_mm")
+        outline = P.hull_of_discs([((0.0, 0.0), ra + params.boss_wall + 4.0), ((dx, dy), rb + params.boss_wall)]
+                                  + [(c, LEG_R + 2.0) for c in legs], FEATURE_TOL)
+        holes = [P.disc(params.bore_of("drive_axle") / 2, FEATURE_TOL, (dx, dy), hole=True)] + [
+            P.disc(ra + jn.press_clearance / 2, FEATURE_TOL, c, hole=True)
+                                                                       for c in legs]
+        outline = outline.difference(P.union2d(holes))
+        top1 = st.layer(1) if n > 1 else st.plate_z(1) + t + g
+        feats = [(P.disc(rb, FEATURE_TOL), 0.0, g), (P.annulus(params.bore_of("drive_axle") / 2, rb + 1.0, FEATURE_TOL, (dx, dy)), 0.0, g)]
+        ground_post = P.shaft(post, [("round", 0.0, top1)] + ([("D", top1, top1 + f)] if n > 1 else []), FEATURE_TOL)
+        base_bores = (Bore("drive axle", (dx, dy, g), DOWN, 2 * ra, g + bt),) + tuple(
+            Bore(f"leg{i + 1} peg", (c[0], c[1], -bt), UP, 2 * ra, bt) for i, c in enumerate(legs))
+        add(Part("base", "base", P.base_plate(outline, bt, feats, [ground_post]), bores=base_bores))
+        leg_solid = P.leg(LEG_R, params.leg_height, ra, bt, FEATURE_TOL)  # the hole carries the clearance
+        for i in range(len(legs)):
+            add(Part(f"leg{i + 1}", "leg", leg_solid))
+        zc = -bt - g
+        add(Part("drive_axle", "axle", P.drive_axle(post, [("D", zc - CRANK_THICKNESS, zc), ("round", zc, g), ("D", g, g + f)],
+                                                    FEATURE_TOL)))
+        add(Part("crank", "crank", P.crank(post, params.crank_radius, CRANK_THICKNESS, ra + params.boss_wall, HANDLE_R,
+                                           HANDLE_LEN, FEATURE_TOL),
+                 bores=(Bore("drive axle", (0.0, 0.0, 0.0), DOWN, post.pin_diameter, CRANK_THICKNESS),)))
+        add(Part("pen_holder", "pen_holder", P.pen_holder(pen_spigot, t, pen_spigot.radius + 1.5, params.pen_holder_height,
+                                                          (params.pen_diameter + PEN_BORE_CLEARANCE) / 2, PEN_FLOOR, FEATURE_TOL),
+                 bores=(Bore("pen", (0.0, 0.0, t + params.pen_holder_height), DOWN, params.pen_diameter,
+                                              params.pen_holder_height - PEN_FLOOR),)))
+
+        for name, data in made.result().items():
+            part = Part(name, "gear", unpack(data), gear=fixed_specs[name], clocking=clock[name], bores=(hub_bore,))
+            parts[slots[name]] = replace(part, print_flip=least_support_flip(part.solid, params.printer.overhang_deg))
     contacts = _contacts(mech, params, st, len(legs))
     static = {"base": pose_z()}
     static.update({f"leg{i + 1}": pose_z(c[0], c[1], -bt) for i, c in enumerate(legs)})
