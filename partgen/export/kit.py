@@ -141,7 +141,10 @@ def manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict) -> dict:
     return {"design": design, "parts": parts, "built_with": built_with()}
 
 
-BUILT_WITH = ("numpy", "manifold3d", "shapely", "trimesh", "scipy")  # whose arithmetic reaches the parts
+# the versions a manifest records: the libraries whose arithmetic makes the parts (numpy, manifold3d, shapely), and
+# trimesh and scipy, kept so every manifest has one shape (export.stl writes STLs as trimesh does, held equal to it
+# by tests/export/test_manifest_schema.py; build imports neither)
+BUILT_WITH = ("numpy", "manifold3d", "shapely", "trimesh", "scipy")
 
 
 def built_with() -> dict[str, str]:
