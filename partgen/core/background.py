@@ -6,9 +6,9 @@ its solids and meshes). ``build`` uses it to make assembly.glb while it verifies
 parts. The child computes exactly what the caller would (same code, same inputs), so the result is
 the same bytes either way.
 
-Where it forks: Linux with more than one CPU for this process. Elsewhere (macOS and Windows, where
-forking a process that has imported numpy is unsafe or impossible, or one CPU) the computation runs
-in the caller when its result is asked for. If the child dies without an answer, the caller
+Where it forks: Linux with more than one CPU for this process, unless ``PARTGEN_FORK=0``. Elsewhere
+(macOS and Windows, where forking a process that has imported numpy is unsafe or impossible, or one
+CPU) the computation runs in the caller when its result is asked for. If the child dies without an answer, the caller
 computes it itself; an exception in the child is raised in the caller. A job whose result is never
 asked for (the caller failed first) has its child killed when the ``with`` block ends.
 """
@@ -28,7 +28,10 @@ T = TypeVar("T")
 
 
 def can_fork() -> bool:
-    """Whether ``Background`` runs its computation in a forked child here (Linux, two or more CPUs)."""
+    """Whether ``Background`` runs its computation in a forked child here (Linux, two or more CPUs,
+    and ``PARTGEN_FORK`` not 0/off/no/false)."""
+    if os.environ.get("PARTGEN_FORK", "1").strip().lower() in ("0", "off", "no", "false"):
+        return False
     if not sys.platform.startswith("linux") or not hasattr(os, "fork"):
         return False
     try:

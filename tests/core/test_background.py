@@ -71,3 +71,10 @@ def test_a_child_that_dies_is_computed_again_in_the_caller():
     with Background(dies_in_the_child) as job:
         calls.append("parent")
         assert job.result() == "computed here"
+
+
+def test_partgen_fork_0_turns_it_off(monkeypatch):
+    monkeypatch.setenv("PARTGEN_FORK", "0")
+    assert not can_fork()
+    with Background(_child_pid_and_array) as job:
+        assert job.result()[0] == os.getpid()
