@@ -11,6 +11,7 @@ the pole the contact lies on gear 2's axis and nothing resists a twist: the play
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 
 import numpy as np
 
@@ -28,18 +29,49 @@ __all__ = ["check_wrist", "wrist_sampling", "mate_sampling", "check", "check_tex
 
 PLAY_RESOLUTION_DEG = 0.005  # each direction's free turn is bisected to this (the figures: 0.01°)
 
+# The exact overlaps of a kit's part pairs, remembered in the process (``_overlap``): a wrist's check
+# looks at the same poses again — the 16 azimuths of the bend θ = 0 are one pose, and the play's
+# bisections at the same bends are the same sequence of poses in every check of the kit (check, then
+# report, then the tolerance study). Keyed on the two solids themselves (held here, so an id is never
+# reused while its entry lives; a solid is immutable) and the exact bytes of both poses: nothing else
+# decides the volume. Bounded: the last _MEMO_PAIRS pairs, _MEMO_POSES poses each (then forgotten).
+_MEMO_PAIRS = 4
+_MEMO_POSES = 4096
+_OVERLAPS: OrderedDict = OrderedDict()  # (id(a), id(b)) -> (a, b, {(Ta bytes, Tb bytes): (volume, centre)})
+
+
+def _overlap(a, Ta: np.ndarray, b, Tb: np.ndarray) -> tuple[float, np.ndarray | None]:
+    """``geometry.measure.intersection(a, Ta, b, Tb)``, remembered (see ``_OVERLAPS``)."""
+    key = (id(a), id(b))
+    entry = _OVERLAPS.get(key)
+    if entry is None or entry[0] is not a or entry[1] is not b:
+        entry = _OVERLAPS[key] = (a, b, {})
+        while len(_OVERLAPS) > _MEMO_PAIRS:
+            _OVERLAPS.popitem(last=False)
+    _OVERLAPS.move_to_end(key)
+    Ta, Tb = np.asarray(Ta, dtype=float), np.asarray(Tb, dtype=float)
+    poses = entry[2]
+    pk = (Ta.shape, Ta.tobytes(), Tb.shape, Tb.tobytes())
+    if pk not in poses:
+        if len(poses) >= _MEMO_POSES:
+            poses.clear()
+        vol, where = intersection(a, Ta, b, Tb)
+        poses[pk] = (vol, None if where is None else tuple(where))
+    vol, where = poses[pk]
+    return vol, None if where is None else np.array(where)
+
 
 def _play(g1, g2, T, axis, through, tol, limit=math.radians(20)) -> float:
     total = 0.0
     steps = math.ceil(math.log2(limit / math.radians(PLAY_RESOLUTION_DEG)))
     for sign in (1, -1):
         lo, hi = 0.0, limit
-        if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * hi))[0] <= tol:
+        if _overlap(g1, np.eye(4), g2, turn_about(T, axis, through, sign * hi))[0] <= tol:
             total += hi
             continue
         for _ in range(steps):
             mid = (lo + hi) / 2
-            lo, hi = (mid, hi) if intersection(g1, np.eye(4), g2, turn_about(T, axis, through, sign * mid))[0] <= tol else (lo, mid)
+            lo, hi = (mid, hi) if _overlap(g1, np.eye(4), g2, turn_about(T, axis, through, sign * mid))[0] <= tol else (lo, mid)
         total += lo
     return total
 
@@ -58,14 +90,17 @@ def check_wrist(kit: WristKit, grid: tuple[int, int] = (6, 16), random_poses: in
     poses += [(float(rng.uniform(0, kit.theta_max)), float(rng.uniform(0, 2 * np.pi))) for _ in range(random_poses)]
     res = Result()
     worst, weakest = (0.0, None), (math.inf, None)
+    engaged_at: dict[bytes, float] = {}  # this check's own solids (domes, blank2): remembered here only
     for n, (theta, psi) in enumerate(poses):
         if progress:
             progress(n, len(poses))
         T = kit.pose2(theta, psi)
-        vol, where = intersection(g1, np.eye(4), g2, T)
+        vol, where = _overlap(g1, np.eye(4), g2, T)
         if vol > worst[0]:
             worst = (vol, (theta, psi, where))
-        engaged = intersection(domes, np.eye(4), blank2, T)[0]
+        if T.tobytes() not in engaged_at:  # the bend θ = 0 is one pose at every azimuth ψ
+            engaged_at[T.tobytes()] = intersection(domes, np.eye(4), blank2, T)[0]
+        engaged = engaged_at[T.tobytes()]
         if engaged < weakest[0]:
             weakest = (engaged, (theta, psi))
     if progress:
