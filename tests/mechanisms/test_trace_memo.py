@@ -74,13 +74,15 @@ def test_the_figures_come_back_into_the_new_folder_and_the_copies_are_the_caller
     assert len(calls) == 2 and bare.files == ()
 
 
-def test_an_unequal_or_incomparable_design_misses():
+def test_an_incomparable_design_misses():
+    class Raises:
+        def __eq__(self, other):
+            raise ValueError("ambiguous")
     calls, kit = [], Kit()
     f = counting(calls)
-    arr = np.arange(3.0)
-    trace_memo.remembered("k", arr, kit, 4, None, f)
-    trace_memo.remembered("k", arr.copy(), kit, 4, None, f)  # == is an array, not a bool: a miss, no error
-    assert len(calls) == 2
+    for spec in (object(), object(), Raises(), Raises()):
+        trace_memo.remembered("k", spec, kit, 4, None, f)
+    assert len(calls) == 4
 
 
 def test_the_wrist_traces_its_design_once_with_the_same_figures(tmp_path, monkeypatch):
@@ -98,4 +100,58 @@ def test_the_wrist_traces_its_design_once_with_the_same_figures(tmp_path, monkey
     assert again.files == first.files and "wrist.png" in first.files
     assert all((tmp_path / "r" / n).read_bytes() == (tmp_path / "t" / n).read_bytes() for n in first.files)
     loaded.mechanism.trace(loaded.spec, None, 65, None, True)  # other samples: traced anew
+    assert len(calls) == 2
+
+
+def test_a_figure_made_on_request_is_needed_or_left_out(tmp_path):
+    calls, kit = [], Kit()
+
+    def compute(folder):
+        calls.append(folder)
+        names = ["a.png", "anim.gif"] if len(calls) == 2 else ["a.png"]
+        for n in names:
+            (folder / n).write_bytes(n.encode())
+        return Trace({}, names)
+    for d in "123":
+        (tmp_path / d).mkdir()
+    trace_memo.remembered("k", Spec("a"), kit, None, tmp_path / "1", compute, without=("anim.gif",))
+    trace_memo.remembered("k", Spec("a"), kit, None, tmp_path / "2", compute, needs=("anim.gif",))  # kept: no gif
+    assert len(calls) == 2
+    bare = trace_memo.remembered("k", Spec("a"), kit, None, tmp_path / "3", compute, without=("anim.gif",))
+    assert len(calls) == 2 and bare.files == ("a.png",) and sorted(p.name for p in (tmp_path / "3").iterdir()) == ["a.png"]
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Drawn:
+    samples: np.ndarray
+    scale: float
+
+
+def test_designs_are_the_same_field_by_field_arrays_by_bytes_floats_by_bits():
+    same = trace_memo._same
+    assert same(Drawn(np.arange(3.0), 1.0), Drawn(np.arange(3.0), 1.0))  # eq=False: compared by fields
+    assert not same(Drawn(np.arange(3.0), 1.0), Drawn(np.arange(3.0) + 1e-15, 1.0))
+    assert not same(Drawn(np.arange(3.0), 0.0), Drawn(np.arange(3.0), -0.0))
+    assert not same(Drawn(np.arange(3.0), 1.0), Drawn(np.arange(3), 1.0))  # another dtype
+    assert same((1, {"a": [2.5]}), (1, {"a": [2.5]})) and not same((1, {"a": [2.5]}), (1, {"b": [2.5]}))
+    assert not same(object(), object())
+
+
+def test_the_chain_traces_its_design_once(monkeypatch):
+    """(the gear chain's trace reads the design alone: `report`, which passes the kit, shares
+    `trace`'s; its figures and animation: test_a_figure_made_on_request_is_needed_or_left_out)"""
+    from partgen.mechanisms.gear_chain import trace as chain_trace
+
+    cfg = ROOT / "tests" / "designs" / "negative_clearance.yaml"  # a chain that loads in milliseconds
+    calls = []
+    real = chain_trace._trace
+    monkeypatch.setattr(chain_trace, "_trace", lambda *a: calls.append(a) or real(*a))
+    mech = pipeline.load(cfg).mechanism
+    first = mech.trace(pipeline.load(cfg).spec, None, 64, None, True)
+    again = mech.trace(pipeline.load(cfg).spec, object(), 64, None, False)
+    assert len(calls) == 1
+    assert json.dumps(again.stats) == json.dumps(first.stats) and again.data.tobytes() == first.data.tobytes()
+    spec = pipeline.load(cfg).spec
+    other = dataclasses.replace(spec, mechanism=dataclasses.replace(spec.mechanism, scale=spec.mechanism.scale * 2))
+    mech.trace(other, None, 64, None, True)  # another design
     assert len(calls) == 2
