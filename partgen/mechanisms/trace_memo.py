@@ -1,9 +1,11 @@
 """The last traces a process made, kept in memory: `partgen report` traces the kit it checks, and a
 process that runs `trace` and then `report` on one kit (a notebook, the test suite, a script over
 the CLI) traces it once. A hit needs the very kit object (a kit is frozen; another, even an equal
-one, misses), an equal design, the same kind and samples; it hands back a copy of the trace and
-writes the figures' bytes the first trace wrote into the new folder. Only for traces that depend on
-nothing else (not on ``animate``). Bounded (``KEPT`` entries), nothing on disk."""
+one, misses; None for a trace of the design alone), the same design field by field, the same kind
+and samples; it hands back a copy of the trace and writes the figures' bytes the first trace wrote
+into the new folder. Only for traces that depend on nothing else (a figure made only on request,
+an animation, is named by the caller: ``needs``, ``without``). Bounded (``KEPT`` entries), nothing
+on disk."""
 
 from __future__ import annotations
 
