@@ -97,6 +97,15 @@ AS_LARGE = 0.2  # ... whose picture is at least this share of its own, is drawn 
 SEE_THROUGH = 0.25  # opacity of a part drawn translucent
 
 
+def _runs(ordered: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(the distinct values of a sorted 1-D array, the index of each one's first occurrence): what
+    ``np.unique(ordered, return_index=True)`` returns, without its sort of an array already sorted
+    (numpy 2's ``np.unique`` of integers hashes them, ten times slower here than a sort)."""
+    first = np.flatnonzero(np.concatenate(([True], ordered[1:] != ordered[:-1]))) if len(ordered) else \
+        np.zeros(0, np.int64)
+    return ordered[first], first
+
+
 def _raster(px: np.ndarray, z: np.ndarray, size: tuple[int, int], chunk: int = 2_000_000
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Rasterise triangles px (m, 3, 2) in pixels (x right, y down), depth z (m, 3) (larger is
@@ -147,7 +156,7 @@ def _raster(px: np.ndarray, z: np.ndarray, size: tuple[int, int], chunk: int = 2
         pix = (cy[r] - 0.5).astype(np.int64) * W + X
         zz = a[tri] * (X + 0.5) + b[tri] * cy[r] + c[tri]
         o = np.lexsort((-zz, pix))  # per pixel, nearest first
-        pix_o, first = np.unique(pix[o], return_index=True)
+        pix_o, first = _runs(pix[o])
         zn, tn = zz[o][first], tri[o][first]
         better = zn > zbuf[pix_o]
         zbuf[pix_o[better]], tbuf[pix_o[better]] = zn[better], tn[better]
@@ -204,7 +213,7 @@ def render_cutaway(meshes: list[tuple[np.ndarray, np.ndarray, str]], size_px: tu
     see = []
     if cutaway and len(meshes) > 1:
         m = len(meshes)
-        cover = np.unique(pp * m + own[pt])  # (pixel, mesh) pairs: each mesh's picture on its own
+        cover = _runs(np.sort(pp * m + own[pt]))[0]  # (pixel, mesh) pairs: each mesh's picture on its own
         pix, mesh = cover // m, cover % m
         area = np.bincount(mesh, minlength=m)
         front = np.where(near[pix] >= 0, own[np.maximum(near[pix], 0)], -1)

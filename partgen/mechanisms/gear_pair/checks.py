@@ -19,6 +19,9 @@ from .resolve import PairSpec
 
 __all__ = ["outline", "flank_play", "sweep", "check", "check_text"]
 
+_SWEEPS: list[tuple] = []  # (kit, thetas' bytes, tol, play): the last sweeps, newest last
+_SWEEPS_KEPT = 2
+
 
 def outline(kit: PairKit, name: str):
     """The printed gear's section at half its face width, in its own frame (mm)."""
@@ -44,7 +47,7 @@ def flank_play(kit: PairKit, thetas: np.ndarray, tol: float = 1e-6) -> dict[str,
         phi = float(s.output_angle(t))
 
         def area(d: float) -> float:
-            g2 = affinity.translate(affinity.rotate(p2, phi + d, origin=(0, 0), use_radians=True), s.centre_distance)
+            g2 = _turned_and_moved(p2, phi + d, s.centre_distance)
             return g1.intersection(g2).area if g1.intersects(g2) else 0.0
 
         out["overlap_mm2"][k] = area(0.0)
@@ -57,16 +60,51 @@ def flank_play(kit: PairKit, thetas: np.ndarray, tol: float = 1e-6) -> dict[str,
     return out
 
 
+def _turned_and_moved(geom, angle: float, dx: float):
+    """``geom`` turned by ``angle`` rad about the origin, then moved ``dx`` along x: the same
+    coordinates bit for bit as ``affinity.translate(affinity.rotate(geom, angle, origin=(0, 0),
+    use_radians=True), dx)`` (shapely's own arithmetic, its zero offsets and its clamping of tiny
+    sines and cosines included), in one pass over the coordinates instead of two."""
+    cosp, sinp = math.cos(angle), math.sin(angle)
+    if abs(cosp) < 2.5e-16:
+        cosp = 0.0
+    if abs(sinp) < 2.5e-16:
+        sinp = 0.0
+
+    def place(coords):
+        x, y = coords.T
+        # rotate: a·x + b·y + 0.0 (its offset about the origin); translate: 1·x' + 0·y' + dx, which
+        # is x' + dx bit for bit (and 0·x' + 1·y' + 0.0 is y' + 0.0)
+        return np.stack([(cosp * x + -sinp * y + 0.0) + dx, (sinp * x + cosp * y + 0.0) + 0.0]).T
+
+    return shapely.transform(geom, place)
+
+
 def sweep(spec: PairSpec, kit: PairKit, samples: int | None, progress=None):
+    """(gear 1's angles over one output turn, their ``flank_play``) at ``samples`` angles (the
+    design's own when None). The last two sweeps are kept in memory, each keyed on the kit object
+    itself, the angles' bytes and the tolerance: `report` runs the check and the trace over the same
+    kit, and a process running `trace` and then `report` on one kit sweeps it once (a kit is frozen;
+    another kit, even an equal one, is swept anew)."""
     n = samples or spec.samples
     thetas = np.linspace(0.0, 2 * math.pi * spec.gear2.teeth / spec.gear1.teeth, n, endpoint=False)
+    key = thetas.tobytes()
+    for k, (memo_kit, memo_key, memo_tol, memo_play) in enumerate(_SWEEPS):
+        if memo_kit is kit and memo_key == key and memo_tol == 1e-6:
+            _SWEEPS.append(_SWEEPS.pop(k))
+            if progress:
+                progress(n, n)
+            return thetas, {name: v.copy() for name, v in memo_play.items()}
     chunks = [thetas[i:i + 16] for i in range(0, n, 16)]
     parts = []
     for i, c in enumerate(chunks):
         parts.append(flank_play(kit, c))
         if progress:
             progress(min((i + 1) * 16, n), n)
-    return thetas, {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    play = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+    _SWEEPS.append((kit, key, 1e-6, {name: v.copy() for name, v in play.items()}))
+    del _SWEEPS[:-_SWEEPS_KEPT]
+    return thetas, play
 
 
 def check(spec: PairSpec, kit: PairKit, samples: int | None = None, progress=None) -> Result:
