@@ -75,7 +75,8 @@ def read_stl(data: bytes) -> tuple[np.ndarray, np.ndarray]:
         raise ValueError(f"not a binary STL: {len(data)} bytes for {count} triangles")
     corners = np.frombuffer(data, _RECORD, count, 84)["v"].reshape(-1, 3) + np.float32(0.0)
     bits = corners.view("<u4")  # equal floats (after -0.0 -> 0.0) have equal bits
-    order = np.lexsort((bits[:, 2], bits[:, 1], bits[:, 0]))
+    xy = (bits[:, 0].astype(np.uint64) << np.uint64(32)) | bits[:, 1]  # (x, y) as one key: two sort keys, not three
+    order = np.lexsort((bits[:, 2], xy))
     new = np.r_[True, np.any(bits[order[1:]] != bits[order[:-1]], axis=1)] if len(order) else np.zeros(0, bool)
     ids = np.empty(len(order), dtype=np.int64)
     ids[order] = np.cumsum(new) - 1
@@ -116,7 +117,7 @@ def mesh_report(verts: np.ndarray, faces: np.ndarray) -> MeshReport:
     # and are caught as non-manifold edges)
     same = ks[1:] == ks[:-1]
     shells_lbl = components(m, face_of[order[:-1][same]], face_of[order[1:][same]])
-    shells = len(np.unique(shells_lbl))
+    shells = int(np.count_nonzero(shells_lbl == np.arange(m)))  # a component's label is its smallest face
 
     # pinched vertices: corners (face, vertex) joined across each two-face edge at both of its ends;
     # a vertex whose corners form more than one group has faces in more than one fan
@@ -130,7 +131,7 @@ def mesh_report(verts: np.ndarray, faces: np.ndarray) -> MeshReport:
     ca = np.concatenate([e[0] for e in ends])
     cb = np.concatenate([e[1] for e in ends])
     lbl = components(3 * m, ca, cb)
-    fans = np.unique(faces.reshape(-1) * np.int64(3 * m) + lbl) // (3 * m)
-    per_vertex = np.bincount(fans, minlength=len(v))
+    # a fan joins corners of one vertex only, and its label is its smallest corner: one root per fan
+    per_vertex = np.bincount(faces.reshape(-1)[lbl == np.arange(3 * m)], minlength=len(v))
     pinched = int(np.sum(per_vertex > 1))
     return MeshReport(m, len(v), shells, non_manifold, boundary, misoriented, pinched, int(zero.sum()), volume)
