@@ -104,7 +104,7 @@ def test_build_writes_the_kit_its_search_built_and_checked(tmp_path, monkeypatch
     (``autoplay.searched_kit``, handed to ``make_kit`` once: one build fewer) and its files are
     those of the kit built anew, byte for byte. Any other design misses the hand-over: another
     path, another document (digest), another kind, another resolved design object; and it is
-    handed over once."""
+    handed over once. (24 crank angles: the search's checks are the cost, the hand-over is the same.)"""
     from dataclasses import replace
 
     from partgen.mechanisms import REGISTRY, autoplay
@@ -114,7 +114,7 @@ def test_build_writes_the_kit_its_search_built_and_checked(tmp_path, monkeypatch
     mech = REGISTRY["gear_pair"]
     real, builds = type(mech).build, []
     monkeypatch.setattr(type(mech), "build", lambda self, spec, progress=None: builds.append(spec) or real(self, spec, progress))
-    over = pipeline.overrides(TIGHT + ["gears.backlash_per_gear_mm=auto"], "ender3_v3")
+    over = pipeline.overrides(TIGHT + ["gears.backlash_per_gear_mm=auto", "checks.samples=24"], "ender3_v3")
     loaded = pipeline.load(CONFIG, over=over)
     assert len(loaded.auto["verified"]) == 1 and not loaded.auto["per_unit"]["adopted"]
     assert len(builds) == 2 and builds[1] is loaded.spec  # the start values' kit, the choice's kit
