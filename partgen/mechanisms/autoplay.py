@@ -32,6 +32,9 @@ again. One search per design per process, and the choice is remembered between r
 (``core.cache``: under the resolved design at the start values, the design and printer documents,
 partgen's source and the libraries' versions, so a remembered choice is the one the search would
 make now; the allocation is kept as JSON, so a remembered one reads exactly as a new one).
+Within a search each design is resolved once, and the kit built and checked of the choice (when
+no per-unit allocation changed it) is handed to ``pipeline.make_kit`` once (``searched_kit``), so
+``build`` does not build that kit a second time.
 """
 
 from __future__ import annotations
@@ -210,11 +213,11 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
     # the choice verified on the kit it builds: that kit's own model (its check, its margins) on the
     # same prints; where it jams more than allowed, search again from it (only upwards)
     verified = []
-    start_checked = (start.digest(), spec, kit, result, model)
+    start_checked = (spec, kit, result, model)
     for n in range(VERIFY_ROUNDS):
         spec_v = _spec(raw, mech, got["values"], specs)
-        if spec_v is start_checked[1]:  # the choice is the start values: its kit was built and checked above
-            _, _, kit_v, result_v, model_v = start_checked
+        if spec_v is start_checked[0]:  # the choice is the start values: its kit was built and checked above
+            _, kit_v, result_v, model_v = start_checked
         else:
             try:
                 kit_v = mech.build(spec_v, None)

@@ -136,3 +136,30 @@ def test_build_writes_the_kit_its_search_built_and_checked(tmp_path, monkeypatch
     assert files == sorted(p.relative_to(b.dest) for p in b.dest.rglob("*") if p.is_file()) and len(files) > 3
     for f in files:
         assert (a.dest / f).read_bytes() == (b.dest / f).read_bytes(), f
+
+
+def test_a_choice_at_the_start_values_is_verified_on_the_start_kit(monkeypatch):
+    """When the search chooses the start values (0.05 mm here: a 0.195 mm bore fit), the kit it
+    verifies on is the start kit, built and checked once; the allocation is the one a search that
+    builds and checks that kit again gives, figure for figure."""
+    import json
+
+    from partgen.mechanisms import REGISTRY, autoplay
+
+    monkeypatch.setenv("PARTGEN_CACHE", "0")
+    mech = REGISTRY["gear_pair"]
+    real, builds = type(mech).build, []
+    monkeypatch.setattr(type(mech), "build", lambda self, spec, progress=None: builds.append(spec) or real(self, spec, progress))
+    over = pipeline.overrides(["axles.clearance_diametral_mm=0.195", "gears.backlash_per_gear_mm=auto",
+                               "checks.samples=24"], "ender3_v3")
+    got = []
+    for memo in (True, False):
+        monkeypatch.setattr(autoplay, "_DONE", {})
+        if not memo:  # every design resolved anew: the choice is another object than the start's, built again
+            monkeypatch.setattr(autoplay, "_spec", lambda raw, mech, values, memo=None: mech.resolve(autoplay._with(raw, values)))
+        builds.clear()
+        loaded = pipeline.load(CONFIG, over=over)
+        got.append((len(builds), loaded.auto))
+    assert got[0][1]["values"] == {"gears.backlash_per_gear_mm": autoplay.ROLES["backlash"][1]}
+    assert [n for n, _ in got] == [1, 2]
+    assert json.dumps(got[0][1], sort_keys=True) == json.dumps(got[1][1], sort_keys=True)
