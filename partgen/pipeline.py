@@ -90,11 +90,12 @@ def load(target, raw: LoadedDesign | None = None, over: Overrides | None = None)
     got, kit_dir = _raw(target, over) if raw is None else (raw, Path(target) if Path(target).is_dir() else None)
     raw = raw or got
     mech = REGISTRY[raw.design.kind]
-    auto = None
+    auto, spec = None, None
     if autoplay.wants_auto(raw):
         start = mech.resolve(autoplay.at_start(raw))  # the design's own errors first (exit 2 before any build)
         raw, auto = autoplay.resolve_auto(raw, mech, start)
-    return Loaded(raw, mech, mech.resolve(raw), kit_dir, auto)
+        spec = autoplay.searched_spec(raw, mech)  # the search resolved its choice already
+    return Loaded(raw, mech, mech.resolve(raw) if spec is None else spec, kit_dir, auto)
 
 
 _KITS: dict = {}  # one built kit per process: (design bytes, printer bytes) -> kit
@@ -107,13 +108,18 @@ def kit_key(loaded: Loaded) -> tuple:
 
 def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
     """The kit of a loaded design, built once per process (check, trace and report share it);
-    ``fresh``: build it anew (what `build` writes is always built by this call)."""
+    ``fresh``: not the process's kit (what `build` writes is built by this call, or is the kit the
+    ``auto`` search of this very design built and checked while ``load`` chose its play:
+    ``autoplay.searched_kit``, handed over once — the same resolved design object, so the same
+    digest, by the same code in the same process: the kit this call would build)."""
     key = kit_key(loaded)
     if fresh or key not in _KITS:
-        try:
-            kit = loaded.mechanism.build(loaded.spec, progress)
-        except DesignError as e:
-            raise ConfigError(loaded.path, e.key_path, e.problem) from None
+        kit = autoplay.searched_kit(loaded.raw, loaded.mechanism, loaded.spec)
+        if kit is None:
+            try:
+                kit = loaded.mechanism.build(loaded.spec, progress)
+            except DesignError as e:
+                raise ConfigError(loaded.path, e.key_path, e.problem) from None
         _KITS.clear()
         _KITS[key] = kit
     return _KITS[key]
@@ -158,7 +164,10 @@ def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, op
 
 
 def build(path, dest=None, progress=None, notify=None, over: Overrides | None = None) -> Built:
-    """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made."""
+    """Build the kit of a design into ``dest`` (default out/<name>/). Returns what it made. The kit is
+    built by this call: by ``make_kit`` (fresh), or, for a design with ``auto`` play, by the search in
+    this call's ``load`` that built and checked the chosen design (``autoplay.searched_kit``: the same
+    resolved design, the same code; its files are those a new build writes, byte for byte)."""
     raw, _ = _raw(path, over)
     claim = output_claim(raw, dest, "kit", None, "-o", notify)  # its marker records raw.digest()
     loaded = load(path, raw)

@@ -32,6 +32,9 @@ again. One search per design per process, and the choice is remembered between r
 (``core.cache``: under the resolved design at the start values, the design and printer documents,
 partgen's source and the libraries' versions, so a remembered choice is the one the search would
 make now; the allocation is kept as JSON, so a remembered one reads exactly as a new one).
+Within a search each design is resolved once, and the kit built and checked of the choice (when
+no per-unit allocation changed it) is handed to ``pipeline.make_kit`` once (``searched_kit``), so
+``build`` does not build that kit a second time.
 """
 
 from __future__ import annotations
@@ -116,10 +119,22 @@ def at_start(raw: LoadedDesign) -> LoadedDesign:
     return _with(raw, {k: ROLES[r][1] for k, r in keys.items()}) if keys else raw
 
 
-def _builds(raw: LoadedDesign, mech, values: dict) -> str | None:
+def _spec(raw: LoadedDesign, mech, values: dict, memo: dict | None = None):
+    """``mech.resolve`` of the design with ``values`` (``_with``); with ``memo`` (one search's own:
+    the design's digest -> its resolved design; the search's path is one) each design once."""
+    at = _with(raw, values)
+    if memo is None:
+        return mech.resolve(at)
+    d = at.digest()
+    if d not in memo:
+        memo[d] = mech.resolve(at)
+    return memo[d]
+
+
+def _builds(raw: LoadedDesign, mech, values: dict, memo: dict | None = None) -> str | None:
     """None when the design resolves with ``values``; else what stops it."""
     try:
-        mech.resolve(_with(raw, values))
+        _spec(raw, mech, values, memo)
     except ConfigError as e:
         return f"{e.key_path}: {e.problem}" if getattr(e, "key_path", None) else str(e)
     return None
@@ -147,6 +162,7 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
         raise ConfigError(raw.path, next(iter(keys)), f"auto needs a tolerance model: a {mech.kind} design has none yet")
     start = at_start(raw)
     spec = mech.resolve(start) if start_spec is None else start_spec
+    specs = {start.digest(): spec}  # this search's resolved designs by digest (``_spec``)
     what = raw.digest().encode() + b"\0" + pickle.dumps(spec, protocol=5)
     known = recall("auto-play", what)
     if known is not None:
@@ -179,17 +195,17 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
     got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
     for k, role in keys.items():  # a value that does not build caps its knob at the most that does
         step = ROLES[role][2]
-        problem = _builds(raw, mech, {**starts, k: got["values"][k]})
+        problem = _builds(raw, mech, {**starts, k: got["values"][k]}, specs)
         if problem is None:
             continue
         lo, hi = 1, int(round(got["values"][k] / step)) - 1
         while lo < hi:
             mid = (lo + hi + 1) // 2
-            if _builds(raw, mech, {**starts, k: mid * step}) is None:
+            if _builds(raw, mech, {**starts, k: mid * step}, specs) is None:
                 lo = mid
             else:
                 hi = mid - 1
-        if _builds(raw, mech, {**starts, k: lo * step}) is not None:
+        if _builds(raw, mech, {**starts, k: lo * step}, specs) is not None:
             raise ConfigError(raw.path, k, f"auto: no value from {step:g} mm builds: {problem}")
         limits[k] = {"needed_mm": got["values"][k], "problem": problem}
         most[k] = lo
@@ -197,15 +213,18 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
     # the choice verified on the kit it builds: that kit's own model (its check, its margins) on the
     # same prints; where it jams more than allowed, search again from it (only upwards)
     verified = []
+    start_checked = (spec, kit, result, model)
     for n in range(VERIFY_ROUNDS):
-        at = _with(raw, got["values"])
-        spec_v = mech.resolve(at)
-        try:
-            kit_v = mech.build(spec_v, None)
-        except DesignError as e:
-            raise ConfigError(raw.path, e.key_path, e.problem) from None
-        result_v = mech.check(spec_v, kit_v, None, None)
-        model_v = hook(spec_v, kit_v, result_v, kit_v.printer.xy_accuracy)
+        spec_v = _spec(raw, mech, got["values"], specs)
+        if spec_v is start_checked[0]:  # the choice is the start values: its kit was built and checked above
+            _, kit_v, result_v, model_v = start_checked
+        else:
+            try:
+                kit_v = mech.build(spec_v, None)
+            except DesignError as e:
+                raise ConfigError(raw.path, e.key_path, e.problem) from None
+            result_v = mech.check(spec_v, kit_v, None, None)
+            model_v = hook(spec_v, kit_v, result_v, kit_v.printer.xy_accuracy)
         own = int((_draws(model_v, AUTO_SAMPLES, got["seed"]) < 0.0).any(axis=1).sum())
         allowed = int(math.floor(target * AUTO_SAMPLES + 1e-9)) if got["reached"] else got["jams"]
         verified.append({"values": dict(got["values"]), "jams": own, "allowed": allowed})
@@ -217,7 +236,7 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
         got = least_allocation(model, knobs(most), target, AUTO_SAMPLES)
     values = got["values"]
     per_unit = _per_unit(raw, mech, model, keys, got, most,
-                         lambda: hook(spec, kit, result, kit.printer.xy_accuracy, seated=False), built_at)
+                         lambda: hook(spec, kit, result, kit.printer.xy_accuracy, seated=False), built_at, specs)
     design_values = dict(values)
     if per_unit["adopted"]:
         for k, own in per_unit["own"].items():
@@ -238,7 +257,48 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
     else:
         remember("auto-play", what, {"values": design_values, "allocation": alloc})
     _DONE[key] = (design_values, alloc)
-    return _with(raw, design_values), alloc
+    chosen = _with(raw, design_values)
+    _hand_over(chosen, mech, specs.get(chosen.digest()), kit if _spec(raw, mech, values, specs) is spec and not
+               per_unit["adopted"] else None)
+    return chosen, alloc
+
+
+_HANDED: dict = {}  # at most one: (kind, path, digest) -> (resolved design, its kit or None) of the last search's choice
+
+
+def _handed_key(raw: LoadedDesign, mech) -> tuple:
+    return mech.kind, str(Path(raw.path).resolve()), raw.digest()
+
+
+def _hand_over(chosen: LoadedDesign, mech, spec, kit) -> None:
+    """Keep the chosen design's resolved design and, when the last verification round built exactly
+    that design (no per-unit allocation adopted), its kit, for ``searched_spec``/``searched_kit``."""
+    _HANDED.clear()
+    if spec is not None:
+        _HANDED[_handed_key(chosen, mech)] = (spec, kit)
+
+
+def searched_spec(raw: LoadedDesign, mech):
+    """The resolved design the last search made of its choice when ``raw`` is that choice (the design
+    ``resolve_auto`` returned: same kind, path and digest), else None. ``mech.resolve`` is a pure
+    function of the design file's path and document and the printer's: it is what ``mech.resolve(raw)``
+    returns now."""
+    got = _HANDED.get(_handed_key(raw, mech))
+    return got[0] if got is not None else None
+
+
+def searched_kit(raw: LoadedDesign, mech, spec):
+    """The kit the last search built and checked of its choice, handed over once (then forgotten), when
+    ``raw`` is that choice and ``spec`` the very resolved design ``searched_spec`` gave; else None. It
+    is the kit ``mech.build(spec)`` builds now: the same resolved design (same digest and path, the
+    same object), the same code in the same process, and nothing but ``mech.check`` has read it (a
+    check reads a kit; it does not change it)."""
+    key = _handed_key(raw, mech)
+    got = _HANDED.get(key)
+    if got is None or got[0] is not spec or got[1] is None:
+        return None
+    _HANDED[key] = (got[0], None)
+    return got[1]
 
 
 def _units(model, keys: dict, got: dict, most: dict, built_at: dict) -> tuple[list[Unit], list[int]] | str:
@@ -258,7 +318,8 @@ def _units(model, keys: dict, got: dict, most: dict, built_at: dict) -> tuple[li
     return units, start
 
 
-def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict, worst_model, built_at: dict) -> dict:
+def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict, worst_model, built_at: dict,
+              specs: dict | None = None) -> dict:
     """Each gear its own backlash and each running fit its own clearance, from the uniform choice
     ``got`` (``design.allocate.allocate_units``, on the same prints and grids, each unit at most its
     key's most), with a probability of a jam (each margin's exact normal tail, summed) no more than
@@ -334,9 +395,9 @@ def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict,
                       "the uniform values are kept")
         return out
     design = {k: ({"default": got["values"][k], **own[k]} if own[k] else got["values"][k]) for k in keys}
-    problem = _builds(raw, mech, design)
+    problem = _builds(raw, mech, design, specs)
     if problem is None:
-        warn = lambda v: sum(f.severity == "warn" for f in mech.findings(mech.resolve(_with(raw, v))))  # noqa: E731
+        warn = lambda v: sum(f.severity == "warn" for f in mech.findings(_spec(raw, mech, v, specs)))  # noqa: E731
         if warn(design) > warn(got["values"]):
             problem = "a gear's own backlash breaks a rule the uniform kit meets (tip width)"
     if problem is not None:

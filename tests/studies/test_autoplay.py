@@ -97,3 +97,69 @@ def test_auto_verifies_its_choice_on_the_kit_it_builds():
     result = loaded.mechanism.check(loaded.spec, kit, None, None)
     jam = pipeline.jam_finding(loaded, kit, result)
     assert result.figures["jam"]["probability"] <= a["target"], jam
+
+
+def test_build_writes_the_kit_its_search_built_and_checked(tmp_path, monkeypatch):
+    """The search builds and checks its choice's kit; `build` of that design writes that very kit
+    (``autoplay.searched_kit``, handed to ``make_kit`` once: one build fewer) and its files are
+    those of the kit built anew, byte for byte. Any other design misses the hand-over: another
+    path, another document (digest), another kind, another resolved design object; and it is
+    handed over once. (24 crank angles: the search's checks are the cost, the hand-over is the same.)"""
+    from dataclasses import replace
+
+    from partgen.mechanisms import REGISTRY, autoplay
+
+    monkeypatch.setenv("PARTGEN_CACHE", "0")
+    monkeypatch.setattr(autoplay, "_DONE", {})
+    mech = REGISTRY["gear_pair"]
+    real, builds = type(mech).build, []
+    monkeypatch.setattr(type(mech), "build", lambda self, spec, progress=None: builds.append(spec) or real(self, spec, progress))
+    over = pipeline.overrides(TIGHT + ["gears.backlash_per_gear_mm=auto", "checks.samples=24"], "ender3_v3")
+    loaded = pipeline.load(CONFIG, over=over)
+    assert len(loaded.auto["verified"]) == 1 and not loaded.auto["per_unit"]["adopted"]
+    assert len(builds) == 2 and builds[1] is loaded.spec  # the start values' kit, the choice's kit
+    raw, spec = loaded.raw, loaded.spec
+    assert autoplay.searched_spec(raw, mech) is spec
+    other = replace(raw, data={**raw.data, "name": raw.data["name"] + "_b"})
+    assert other.digest() != raw.digest() and autoplay.searched_spec(other, mech) is None
+    assert autoplay.searched_kit(other, mech, spec) is None
+    assert autoplay.searched_kit(replace(raw, path=tmp_path / "elsewhere.yaml"), mech, spec) is None
+    assert autoplay.searched_kit(raw, REGISTRY["gear_chain"], spec) is None
+    again = mech.resolve(raw)
+    assert again is not spec and autoplay.searched_kit(raw, mech, again) is None
+    a = pipeline.build(CONFIG, tmp_path / "a", over=over)  # the search remembered: its kit handed over
+    assert len(builds) == 2 and a.loaded.spec is spec
+    assert autoplay.searched_kit(raw, mech, spec) is None  # once
+    b = pipeline.build(CONFIG, tmp_path / "b", over=over)
+    assert len(builds) == 3 and b.kit is not a.kit  # built anew
+    files = sorted(p.relative_to(a.dest) for p in a.dest.rglob("*") if p.is_file())
+    assert files == sorted(p.relative_to(b.dest) for p in b.dest.rglob("*") if p.is_file()) and len(files) > 3
+    for f in files:
+        assert (a.dest / f).read_bytes() == (b.dest / f).read_bytes(), f
+
+
+def test_a_choice_at_the_start_values_is_verified_on_the_start_kit(monkeypatch):
+    """When the search chooses the start values (0.05 mm here: a 0.195 mm bore fit), the kit it
+    verifies on is the start kit, built and checked once; the allocation is the one a search that
+    builds and checks that kit again gives, figure for figure."""
+    import json
+
+    from partgen.mechanisms import REGISTRY, autoplay
+
+    monkeypatch.setenv("PARTGEN_CACHE", "0")
+    mech = REGISTRY["gear_pair"]
+    real, builds = type(mech).build, []
+    monkeypatch.setattr(type(mech), "build", lambda self, spec, progress=None: builds.append(spec) or real(self, spec, progress))
+    over = pipeline.overrides(["axles.clearance_diametral_mm=0.195", "gears.backlash_per_gear_mm=auto",
+                               "checks.samples=24"], "ender3_v3")
+    got = []
+    for memo in (True, False):
+        monkeypatch.setattr(autoplay, "_DONE", {})
+        if not memo:  # every design resolved anew: the choice is another object than the start's, built again
+            monkeypatch.setattr(autoplay, "_spec", lambda raw, mech, values, memo=None: mech.resolve(autoplay._with(raw, values)))
+        builds.clear()
+        loaded = pipeline.load(CONFIG, over=over)
+        got.append((len(builds), loaded.auto))
+    assert got[0][1]["values"] == {"gears.backlash_per_gear_mm": autoplay.ROLES["backlash"][1]}
+    assert [n for n, _ in got] == [1, 2]
+    assert json.dumps(got[0][1], sort_keys=True) == json.dumps(got[1][1], sort_keys=True)
