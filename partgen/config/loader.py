@@ -7,7 +7,7 @@ import copy
 import difflib
 import hashlib
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, TypeVar
 
@@ -35,6 +35,7 @@ class LoadedDesign:
     printer: Printer
     data: dict | None = None  # the design as validated: the file with the command line's --set applied
     printer_data: dict | None = None  # the printer profile as validated (--printer's when given)
+    _digest: list = field(default_factory=list, init=False, repr=False, compare=False)  # digest(), once made
 
     def document(self) -> dict:
         """A copy of the design's mapping as validated (what a kit folder's design.yaml records)."""
@@ -44,8 +45,12 @@ class LoadedDesign:
         return copy.deepcopy(self.printer_data) if self.printer_data is not None else read_yaml(self.printer_path)
 
     def digest(self) -> str:
-        """A fingerprint of the design as loaded (its YAML with the overrides, and its printer)."""
-        return hashlib.sha256(dump_yaml(self.document()) + b"\0" + dump_yaml(self.printer_document())).hexdigest()[:16]
+        """A fingerprint of the design as loaded (its YAML with the overrides, and its printer); made
+        once (a loaded design is not changed: ``dataclasses.replace`` makes another, with its own)."""
+        if not self._digest:
+            self._digest.append(hashlib.sha256(dump_yaml(self.document()) + b"\0"
+                                               + dump_yaml(self.printer_document())).hexdigest()[:16])
+        return self._digest[0]
 
 
 def read_yaml(path: Path) -> dict:

@@ -1,35 +1,46 @@
-"""One computation run beside the caller's own work, in a forked copy of the process.
+"""Work run beside the caller's own, in a forked copy of the process.
 
 manifold3d and most of partgen's numpy hold the GIL, so threads do not overlap them; a forked child
-does, and it needs nothing pickled but its result (it starts with the parent's memory: the kit,
-its solids and meshes). ``build`` uses it to make assembly.glb while it verifies and weighs the
-parts. The child computes exactly what the caller would (same code, same inputs), so the result is
-the same bytes either way.
+does, and it needs nothing pickled but its results (it starts with the parent's memory: the kit,
+its solids and meshes). ``build`` uses it to make a gear chain's clocked gears while it makes the
+rest of the kit, and assembly.glb while it verifies and weighs the parts. The child computes exactly
+what the caller would (same code, same inputs), so the results are the same bytes either way.
+
+- ``Background(fn)``: one computation, ``fn()``, in the child.
+- ``SharedMap(fn, items)``: ``[fn(x) for x in items]``, the child working from the front while the
+  caller does its own work; when the caller asks for the results it takes items from the back
+  itself until the two meet, so neither waits for long whatever the balance of the work.
 
 Where it forks: Linux with more than one CPU for this process, unless ``PARTGEN_FORK=0``. Elsewhere
 (macOS and Windows, where forking a process that has imported numpy is unsafe or impossible, or one
-CPU) the computation runs in the caller when its result is asked for. If the child dies without an answer, the caller
-computes it itself; an exception in the child is raised in the caller. A job whose result is never
-asked for (the caller failed first) has its child killed when the ``with`` block ends.
+CPU) the work runs in the caller when its results are asked for. If the child dies without an
+answer, the caller computes what is missing itself; an exception in the work is raised in the
+caller (for ``SharedMap``, the first item's in order, as the list comprehension would). Work whose
+results are never asked for (the caller failed first) has its child killed when the ``with`` block
+ends.
 """
 
 from __future__ import annotations
 
 import os
 import pickle
+import select
 import signal
+import struct
 import sys
+import tempfile
 import warnings
-from typing import Callable, Generic, TypeVar
+from typing import Callable, Generic, Sequence, TypeVar
 
-__all__ = ["Background", "can_fork"]
+__all__ = ["Background", "SharedMap", "can_fork"]
 
 T = TypeVar("T")
+_WHERE = struct.Struct("<QQ")  # what the child sends on the pipe: where an object lies in the file, its length
 
 
 def can_fork() -> bool:
-    """Whether ``Background`` runs its computation in a forked child here (Linux, two or more CPUs,
-    and ``PARTGEN_FORK`` not 0/off/no/false)."""
+    """Whether work runs in a forked child here (Linux, two or more CPUs, and ``PARTGEN_FORK`` not
+    0/off/no/false)."""
     if os.environ.get("PARTGEN_FORK", "1").strip().lower() in ("0", "off", "no", "false"):
         return False
     if not sys.platform.startswith("linux") or not hasattr(os, "fork"):
@@ -40,19 +51,13 @@ def can_fork() -> bool:
         return (os.cpu_count() or 1) > 1
 
 
-class Background(Generic[T]):
-    """``with Background(fn) as job: ...; value = job.result()``: ``fn()`` runs in a forked child
-    from the ``with`` until ``result()`` (module docstring); ``fork=False`` runs it in the caller."""
+class _Child:
+    """A forked child running ``work(send)``; ``send(obj)`` passes one object to the caller. The
+    objects go through an unlinked temporary file (the child never waits for the caller to read);
+    the pipe carries only where each one lies."""
 
-    def __init__(self, fn: Callable[[], T], fork: bool | None = None):
-        self._fn = fn
-        self._fork = can_fork() if fork is None else bool(fork and can_fork())
-        self._pid = None
-        self._read = None
-
-    def __enter__(self) -> "Background[T]":
-        if not self._fork:
-            return self
+    def __init__(self, work: Callable[[Callable[[object], None]], None]):
+        self._file = tempfile.TemporaryFile(prefix="partgen-")
         r, w = os.pipe()
         for stream in (sys.stdout, sys.stderr):  # nothing buffered is written twice
             try:
@@ -62,51 +67,164 @@ class Background(Generic[T]):
         with warnings.catch_warnings():  # Python 3.12+ warns on forking with threads alive (numpy's BLAS
             warnings.simplefilter("ignore", DeprecationWarning)  # pool, which re-forms in the child)
             pid = os.fork()
-        if pid == 0:  # the child: compute, send, leave without running the parent's exit handlers
+        if pid == 0:  # the child: work, send, leave without running the parent's exit handlers
             code = 0
             try:
                 os.close(r)
-                try:
-                    payload = pickle.dumps((True, self._fn()), protocol=pickle.HIGHEST_PROTOCOL)
-                except BaseException as e:  # noqa: BLE001 - every failure goes back to the caller
+                end = 0
+
+                def send(obj) -> None:
+                    nonlocal end
                     try:
-                        payload = pickle.dumps((False, e), protocol=pickle.HIGHEST_PROTOCOL)
+                        data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
                     except Exception:  # an exception that does not pickle: the caller computes it again
-                        payload = b""
-                with os.fdopen(w, "wb") as f:
-                    f.write(payload)
-            except BaseException:  # noqa: BLE001
+                        return
+                    os.pwrite(self._file.fileno(), data, end)
+                    os.write(w, _WHERE.pack(end, len(data)))
+                    end += len(data)
+                work(send)
+            except BaseException:  # noqa: BLE001 - the caller computes what did not arrive
                 code = 1
             finally:
                 os._exit(code)
         os.close(w)
-        self._pid, self._read = pid, r
+        self.pid, self.fd, self._buf = pid, r, b""
+
+    def receive(self, block: bool) -> list:
+        """The objects sent so far and not yet received (waiting for at least one when ``block``,
+        unless the child has finished)."""
+        out = []
+        while self.fd is not None:
+            if not block or out:
+                ready, _, _ = select.select([self.fd], [], [], 0)
+                if not ready:
+                    break
+            chunk = os.read(self.fd, 1 << 16)
+            if not chunk:  # the child has finished (or died)
+                os.close(self.fd)
+                self.fd = None
+                break
+            self._buf += chunk
+            while len(self._buf) >= _WHERE.size:
+                at, n = _WHERE.unpack_from(self._buf)
+                self._buf = self._buf[_WHERE.size:]
+                out.append(pickle.loads(os.pread(self._file.fileno(), n, at)))
+        return out
+
+    def stop(self) -> None:
+        """Kill the child (if it still runs) and reap it."""
+        if self.pid is not None:
+            try:
+                os.kill(self.pid, signal.SIGKILL)
+            except ProcessLookupError:  # pragma: no cover - already gone
+                pass
+            os.waitpid(self.pid, 0)
+            self.pid = None
+        if self.fd is not None:
+            os.close(self.fd)
+            self.fd = None
+        self._file.close()
+
+
+class Background(Generic[T]):
+    """``with Background(fn) as job: ...; value = job.result()``: ``fn()`` runs in a forked child
+    from the ``with`` until ``result()`` (module docstring); ``fork=False`` runs it in the caller."""
+
+    def __init__(self, fn: Callable[[], T], fork: bool | None = None):
+        self._fn = fn
+        self._fork = can_fork() if fork is None else bool(fork and can_fork())
+        self._child: _Child | None = None
+
+    def __enter__(self) -> "Background[T]":
+        if self._fork:
+            self._child = _Child(lambda send: send(_attempt(self._fn)))
         return self
 
     def result(self) -> T:
         """``fn()``'s value (raises what ``fn`` raised)."""
-        if self._pid is None:
+        child, self._child = self._child, None
+        if child is None:
             return self._fn()
-        with os.fdopen(self._read, "rb") as f:
-            data = f.read()
-        self._read = None
-        os.waitpid(self._pid, 0)
-        self._pid = None
-        if not data:  # the child died without an answer: compute it here
+        got = []
+        while child.fd is not None and not got:
+            got = child.receive(block=True)
+        child.stop()
+        if not got:  # the child died without an answer: compute it here
             return self._fn()
-        ok, value = pickle.loads(data)
-        if ok:
-            return value
-        raise value
+        return _unwrap(got[0])
 
     def __exit__(self, *exc) -> None:
-        if self._pid is not None:  # never asked for: stop the child
-            try:
-                os.kill(self._pid, signal.SIGKILL)
-            except ProcessLookupError:  # pragma: no cover - already gone
-                pass
-            os.waitpid(self._pid, 0)
-            self._pid = None
-        if self._read is not None:
-            os.close(self._read)
-            self._read = None
+        if self._child is not None:  # never asked for: stop the child
+            self._child.stop()
+            self._child = None
+
+
+class SharedMap(Generic[T]):
+    """``with SharedMap(fn, items) as job: ...; values = job.results()``: ``[fn(x) for x in items]``,
+    a forked child working from the front from the ``with`` on, the caller from the back once it asks
+    (module docstring); ``fork=False`` computes it all in the caller."""
+
+    def __init__(self, fn: Callable[[object], T], items: Sequence, fork: bool | None = None):
+        self._fn, self._items = fn, list(items)
+        self._fork = (can_fork() if fork is None else bool(fork and can_fork())) and len(self._items) > 1
+        self._child: _Child | None = None
+
+    def __enter__(self) -> "SharedMap[T]":
+        if self._fork:
+            def work(send):
+                for x in self._items:
+                    got = _attempt(lambda: self._fn(x))
+                    send(got)
+                    if not got[0]:
+                        return
+            self._child = _Child(work)
+        return self
+
+    def results(self) -> list[T]:
+        """The values in the items' order (raises what the first failing item raised)."""
+        child, self._child = self._child, None
+        if child is None:
+            return [self._fn(x) for x in self._items]
+        front: list = []  # the child's answers, in order
+        back: dict = {}  # index -> the caller's answer
+        hi = len(self._items)  # the caller has done items[hi:]
+        try:
+            while len(front) < hi:
+                front += child.receive(block=False)
+                if any(not ok for ok, _ in front) or child.fd is None:
+                    break
+                if len(front) >= hi - 1:  # the child is on the last one left: wait for it
+                    front += child.receive(block=True)
+                    continue
+                hi -= 1
+                back[hi] = _attempt(lambda: self._fn(self._items[hi]))
+                if not back[hi][0]:
+                    break
+        finally:
+            child.stop()
+        out = [*front[:hi]] + [back[i] for i in range(hi, len(self._items)) if i in back]
+        if len(out) < len(self._items) or any(not ok for ok, _ in out):
+            # a failure, or a child that died: the rest computed here, in order, so the first
+            # failing item raises (the items done are not done again)
+            done = [v for ok, v in front[:hi] if ok] if all(ok for ok, _ in front[:hi]) else []
+            return [*done, *[self._fn(x) for x in self._items[len(done):]]]
+        return [v for _, v in out]
+
+    def __exit__(self, *exc) -> None:
+        if self._child is not None:  # never asked for: stop the child
+            self._child.stop()
+            self._child = None
+
+
+def _attempt(fn: Callable[[], T]) -> tuple[bool, object]:
+    try:
+        return True, fn()
+    except Exception as e:  # noqa: BLE001 - raised again in the caller
+        return False, e
+
+
+def _unwrap(got: tuple[bool, object]):
+    ok, value = got
+    if ok:
+        return value
+    raise value

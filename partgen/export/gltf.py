@@ -45,7 +45,8 @@ from ..core.protocol import Kit, Motion
 from ..design.graph import components
 from .stl import Mesh
 
-__all__ = ["MAX_ERROR_MM", "MIN_KEYS", "MAX_KEYS", "CREASE_DEG", "Instance", "assembly_glb", "read_glb",
+__all__ = ["MAX_ERROR_MM", "MIN_KEYS", "MAX_KEYS", "CREASE_DEG", "Instance", "assembly_glb", "distinct_meshes", "shaded",
+           "read_glb",
            "role_palette", "Sampling", "sample_motion", "motion_of"]
 
 MAX_ERROR_MM = 0.05      # the farthest any point may stray from its true place between two keys
@@ -276,8 +277,8 @@ def creased_normals(vertices: np.ndarray, faces: np.ndarray, crease_deg: float =
     return v[uniq % nv], nrm, corner_vertex.reshape(m, 3)
 
 
-def _shaded(mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Vertices, normals and triangles with split normals at the creases (float32, uint)."""
+def shaded(mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A mesh as the GLB stores it: vertices, normals split at the creases, triangles (float32, uint)."""
     v, nrm, f = creased_normals(mesh.vertices, mesh.faces)
     return v.astype(np.float32), nrm.astype(np.float32), f.astype(np.uint16 if len(v) < 65535 else np.uint32)
 
@@ -286,10 +287,17 @@ def _trs(m: np.ndarray) -> tuple[list[float], list[float]]:
     return [float(x) for x in m[:3, 3]], [float(x) for x in _quat(m[None, :3, :3])[0]]
 
 
+def distinct_meshes(instances: list[Instance]) -> list:
+    """The instances' meshes, each once, in the order they first come (the GLB's meshes)."""
+    return list({id(it.mesh): it.mesh for it in instances}.values())
+
+
 def assembly_glb(kit: Kit, instances: list[Instance], motion: Motion | None = None,
-                 colours: dict[str, str] | None = None, max_error_mm: float = MAX_ERROR_MM) -> bytes:
+                 colours: dict[str, str] | None = None, max_error_mm: float = MAX_ERROR_MM,
+                 shaded_meshes: list | None = None, sampling: Sampling | None = None) -> bytes:
     """The GLB of the kit's ``instances`` (module docstring); animated over ``motion`` when given,
-    else at rest (motion parameter 0)."""
+    else at rest (motion parameter 0). ``shaded_meshes`` (``shaded`` of each of ``distinct_meshes``)
+    and ``sampling`` (``sample_motion``'s) when the caller has made them already."""
     for it in instances:
         r = it.local_from_mesh[:3, :3]
         if abs(np.linalg.det(r) - 1.0) > 1e-6:
@@ -301,14 +309,16 @@ def assembly_glb(kit: Kit, instances: list[Instance], motion: Motion | None = No
                  for role in roles]
     b = _Bin()
     meshes, mesh_of = [], {}
-    distinct = list({id(it.mesh): it.mesh for it in instances}.values())
-    with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:  # numpy lets go of the GIL
-        shaded = dict(zip(map(id, distinct), pool.map(_shaded, distinct)))  # each mesh its own: no shared state
+    distinct = distinct_meshes(instances)
+    if shaded_meshes is None:
+        with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:  # numpy lets go of the GIL
+            shaded_meshes = list(pool.map(shaded, distinct))  # each mesh its own: no shared state
+    shading = dict(zip(map(id, distinct), shaded_meshes))
     for it in instances:
         key = id(it.mesh)
         if key in mesh_of:
             continue
-        v, nrm, f = shaded[key]
+        v, nrm, f = shading[key]
         pos = b.add(v, "VEC3", _FLOAT, _ARRAY_BUFFER, minmax=True)
         nor = b.add(nrm, "VEC3", _FLOAT, _ARRAY_BUFFER)
         idx = b.add(f.reshape(-1), "SCALAR", _UINT16 if f.dtype == np.uint16 else _UINT32, _ELEMENT_ARRAY_BUFFER)
@@ -316,11 +326,11 @@ def assembly_glb(kit: Kit, instances: list[Instance], motion: Motion | None = No
         meshes.append({"name": it.part.name, "primitives": [{"attributes": {"POSITION": pos, "NORMAL": nor},
                                                              "indices": idx, "mode": 4,
                                                              "material": roles.index(it.part.role)}]})
-    sampling = None
     if motion is not None:
-        sampling = sample_motion(kit, instances, motion, max_error_mm)
+        sampling = sampling or sample_motion(kit, instances, motion, max_error_mm)
         rest = sampling.poses[0]
     else:
+        sampling = None
         poses = kit.poses(0.0)
         rest = np.stack([poses[it.part.name] @ it.local_from_mesh for it in instances])
     nodes = [{"name": "assembly", "children": list(range(1, len(instances) + 1)), "scale": [0.001] * 3,

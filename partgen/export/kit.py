@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..core.background import Background
+from ..core.background import SharedMap
 from ..core.protocol import Kit, Motion
 from ..geometry.parts import Part
 from ..errors import MeshError
@@ -22,9 +22,9 @@ from . import gltf
 from .gltf import Instance
 from .outputs import OutputClaim, atomic_dir
 from .stl import Mesh, stl_bytes, stored_mesh
-from .verify import mesh_report, read_stl
+from .verify import MeshReport, mesh_report, read_stl
 
-__all__ = ["PrintedPart", "printed", "group_parts", "manifest", "built_with", "verify_parts", "write_kit", "atomic_dir"]
+__all__ = ["PrintedPart", "printed", "group_parts", "laid_groups", "glb_instances", "manifest", "built_with", "verify_parts", "stl_report", "write_kit", "atomic_dir"]
 
 
 @dataclass(frozen=True)
@@ -168,6 +168,11 @@ def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] =
                  colours: dict[str, str] | None = None) -> bytes:
     """The GLB of every part (``export.gltf``: metres, Y up, one mesh per distinct STL instanced by
     its nodes, coloured by role), bought parts included; animated over ``motion`` when given."""
+    return gltf.assembly_glb(kit, glb_instances(groups, bought), motion, colours)
+
+
+def glb_instances(groups: list[list[PrintedPart]], bought: list[Part] = ()) -> list[Instance]:
+    """The GLB's nodes: every bought part (as modelled) and every printed part (its STL's mesh)."""
     instances, solids = [], {}
     for p in bought:
         if id(p.solid) not in solids:
@@ -177,20 +182,25 @@ def assembly_glb(kit: Kit, groups: list[list[PrintedPart]], bought: list[Part] =
     for grp in groups:
         for it in grp:
             instances.append(Instance(it.part, grp[0].mesh, it.local_from_print))
-    return gltf.assembly_glb(kit, instances, motion, colours)
+    return instances
 
 
-def verify_parts(groups: list[list[PrintedPart]], design_name: str) -> None:
+def verify_parts(groups: list[list[PrintedPart]], design_name: str, reports: list | None = None) -> None:
     """Read every distinct STL back as a slicer does (export.verify) and raise ``MeshError``, naming
-    the design and each bad part, unless every one is a single closed, oriented manifold shell."""
+    the design and each bad part, unless every one is a single closed, oriented manifold shell
+    (``reports``: each group's ``stl_report``, when the caller has them already)."""
     bad = []
-    for g in groups:
-        report = mesh_report(*read_stl(g[0].stl))
+    for g, report in zip(groups, reports if reports is not None else map(stl_report, groups)):
         if not report.ok:
             bad.append(f"{g[0].part.name} ({', '.join(report.problems())})")
     if bad:
         raise MeshError(f"design {design_name}: {len(bad)} part(s) would be written as a mesh that is not one closed, "
                         f"oriented manifold shell: {'; '.join(bad)} — a bug in partgen; nothing was written")
+
+
+def stl_report(group: list[PrintedPart]) -> MeshReport:
+    """What a slicer reads in a distinct part's STL (``export.verify``)."""
+    return mesh_report(*read_stl(group[0].stl))
 
 
 def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dict[str, bytes] | None = None,
@@ -199,6 +209,32 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
     atomically; returns the manifest. Every distinct STL is verified first (``verify_parts``): a bad
     part raises ``MeshError`` and nothing is written. ``motion`` animates assembly.glb over the
     mechanism's input; ``colours`` (role -> '#rrggbb') colour its parts."""
+    groups = laid_groups(kit, progress)
+    bought = [p for p in kit.parts if not p.printed]
+    instances = glb_instances(groups, bought)
+    distinct = gltf.distinct_meshes(instances)
+    # the independent pieces of work — assembly.glb's motion and shaded meshes, each STL's report —
+    # shared with a forked child (core.background, from the front) while the manifest is made here
+    work = [("motion", None)] * (motion is not None) + [("shade", m) for m in distinct] + [("verify", g) for g in groups]
+    with SharedMap(lambda item: _piece(kit, instances, motion, *item), work) as made:
+        man = _manifest_of(kit, groups, design, bought)
+        got = made.results()
+    verify_parts(groups, str(design.get("name", kit.name)), got[len(work) - len(groups):])
+    sampling = got[0] if motion is not None else None
+    meshes = got[len(work) - len(groups) - len(distinct):len(work) - len(groups)]
+    files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
+    files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
+    files["assembly.glb"] = gltf.assembly_glb(kit, instances, motion, colours, shaded_meshes=meshes, sampling=sampling)
+    files.update(extra_files or {})
+    with atomic_dir(dest) as tmp:
+        for name, data in files.items():
+            (tmp / name).write_bytes(data)
+    return man
+
+
+def laid_groups(kit: Kit, progress=None) -> list[list[PrintedPart]]:
+    """Every printed part laid on the plate (``printed``; parts sharing a solid once), grouped by
+    identical STL; ``progress(name)`` as each is laid."""
     say = progress or (lambda name: None)
     items, done = [], {}
     for p in (p for p in kit.parts if p.printed):
@@ -207,24 +243,18 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
         if key not in done:
             done[key] = printed(p, kit.printer)
         items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
-    groups = group_parts(items)
-    bought = [p for p in kit.parts if not p.printed]
-    # assembly.glb is made in a forked child while the parts are verified and weighed here (core.background)
-    with Background(lambda: assembly_glb(kit, groups, bought, motion, colours)) as glb:
-        man = _verified_manifest(kit, groups, design, bought)
-        files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
-        files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
-        files["assembly.glb"] = glb.result()
-    files.update(extra_files or {})
-    with atomic_dir(dest) as tmp:
-        for name, data in files.items():
-            (tmp / name).write_bytes(data)
-    return man
+    return group_parts(items)
 
 
-def _verified_manifest(kit: Kit, groups: list[list[PrintedPart]], design: dict, bought: list[Part]) -> dict:
-    """``verify_parts``, then the manifest (with what was compensated, and the purchased parts)."""
-    verify_parts(groups, str(design.get("name", kit.name)))
+def _piece(kit: Kit, instances: list[Instance], motion: Motion | None, what: str, item):
+    """One piece of write_kit's work: the GLB's motion, a shaded mesh, or an STL's report."""
+    if what == "motion":
+        return gltf.sample_motion(kit, instances, motion)
+    return gltf.shaded(item) if what == "shade" else stl_report(item)
+
+
+def _manifest_of(kit: Kit, groups: list[list[PrintedPart]], design: dict, bought: list[Part]) -> dict:
+    """The manifest, with what was compensated and the purchased parts."""
     b = biases(kit.printer)
     if b is not None:  # say what was compensated, and what was printed as designed
         state = {p.name: compensated(p, kit.printer)[1] for p in kit.parts if p.printed}

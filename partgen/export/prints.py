@@ -11,7 +11,7 @@ import numpy as np
 
 from ..core.findings import Finding, Result
 from ..core.protocol import Kit
-from .kit import PrintedPart, group_parts, printed
+from .kit import PrintedPart, laid_groups, printed
 
 __all__ = ["printed_groups", "stale_files", "stale_finding", "plan_plates", "plates_png", "plate_pngs",
            "write_plate_files", "too_large"]
@@ -22,15 +22,8 @@ _GROUPS: dict = {}  # id(kit) -> (kit, its printed parts grouped): one kit at a 
 def printed_groups(kit: Kit) -> list[list[PrintedPart]]:
     """The kit's printed parts laid on the plate and grouped by identical STL, made once per kit."""
     if id(kit) not in _GROUPS or _GROUPS[id(kit)][0] is not kit:
-        done: dict = {}
-        items = []
-        for p in (p for p in kit.parts if p.printed):
-            key = (id(p.solid), p.print_flip)  # parts sharing a solid are laid on the plate once
-            if key not in done:
-                done[key] = printed(p, kit.printer)
-            items.append(PrintedPart(p, done[key].stl, done[key].mesh, done[key].local_from_print))
         _GROUPS.clear()
-        _GROUPS[id(kit)] = (kit, group_parts(items))
+        _GROUPS[id(kit)] = (kit, laid_groups(kit))
     return _GROUPS[id(kit)][1]
 
 
@@ -57,11 +50,12 @@ def too_large(kit: Kit, margin: float) -> list[tuple[object, np.ndarray]]:
     ``margin`` / 2 from the edge: a long link on the diagonal, as the plates place it) and is no
     taller than the envelope's height."""
     from ..geometry.measure import oversize
-    from .plates import fits_plate
 
     env = kit.printer.envelope
     out = []
     for part, ext in oversize(kit.parts, env):
+        from .plates import fits_plate  # only for a part larger than the envelope (plates: ~10 ms to import)
+
         mesh = printed(part, kit.printer).mesh
         tall = float(np.ptp(np.asarray(mesh.vertices)[:, 2]))
         if tall <= env[2] + 1e-9 and fits_plate(mesh, (env[0], env[1]), margin):

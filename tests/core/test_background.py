@@ -1,12 +1,14 @@
-"""core.background: a computation run in a forked child gives the caller the same value, raises
-the same error, and leaves no child behind when its result is never asked for."""
+"""core.background: work run in a forked child gives the caller the same values, raises the same
+error (for a shared map, the first failing item's, as the list comprehension would), leaves no
+child behind when its results are never asked for, and is computed by the caller when the child
+dies; a shared map's items are done by both processes when the caller has time to help."""
 
 import os
 
 import numpy as np
 import pytest
 
-from partgen.core.background import Background, can_fork
+from partgen.core.background import Background, SharedMap, can_fork
 
 needs_fork = pytest.mark.skipif(not can_fork(), reason="forks only on Linux with two or more CPUs")
 
@@ -78,3 +80,41 @@ def test_partgen_fork_0_turns_it_off(monkeypatch):
     assert not can_fork()
     with Background(_child_pid_and_array) as job:
         assert job.result()[0] == os.getpid()
+
+
+def _square_and_pid(x):
+    return x * x, os.getpid()
+
+
+@needs_fork
+def test_a_shared_map_is_the_list_comprehension_done_by_both_processes():
+    items = list(range(40))
+    with SharedMap(_square_and_pid, items) as job:
+        got = job.results()  # the caller has nothing else to do: it helps from the back at once
+    assert [v for v, _ in got] == [x * x for x in items]
+    pids = {pid for _, pid in got}
+    assert os.getpid() in pids and len(pids) == 2  # each process did some of it
+    assert got[-1][1] == os.getpid()  # the caller started from the back
+
+
+@pytest.mark.parametrize("fork", [True, False])
+def test_a_shared_map_raises_the_first_failing_item_in_order(fork):
+    def f(x):
+        if x in (3, 37):
+            raise ValueError(f"item {x}")
+        return x
+    with pytest.raises(ValueError, match="item 3$"):
+        with SharedMap(f, range(40), fork=fork) as job:
+            job.results()
+
+
+@needs_fork
+def test_a_shared_map_whose_child_dies_is_finished_by_the_caller():
+    parent = os.getpid()
+
+    def f(x):
+        if x == 5 and os.getpid() != parent:
+            os._exit(3)  # the child dies on item 5
+        return x + 1
+    with SharedMap(f, range(30)) as job:
+        assert job.results() == [x + 1 for x in range(30)]

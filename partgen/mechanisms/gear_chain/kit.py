@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...core.background import Background
+from ...core.background import SharedMap
 from ...core.parts import Bore, Contact, Stock
 from ...core.quantise import r6
 from ...core.protocol import ParamsKit
@@ -158,15 +158,17 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
             part = replace(part, print_flip=least_support_flip(part.solid, params.printer.overhang_deg))
         parts.append(part)
 
-    # gears. The fixed gears (each clocked: no two alike) are made in a forked child (core.background)
-    # while the rest of the kit is made here, and take their places in the part list at the end
+    # gears. The fixed gears (each clocked: no two alike) are made by a forked child (core.background)
+    # while the rest of the kit is made here, which then helps with the last of them; they take their
+    # places in the part list at the end
     fixed_specs = {"G1": mech.G1, **{f"G{s.j + 1}": s.G for s in mech.stages}}
 
-    def fixed_solid(name: str, spec):
+    def fixed_solid(name: str) -> dict:
+        spec = fixed_specs[name]
         collar_r = max(min(rb + 2.0, spec.root_radius - 0.5), collar_min)
-        return P.fixed_gear(spec, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, clock[name], tol)
+        return pack(P.fixed_gear(spec, f, params.bore_of(name) / 2, (collar_r, g), boss, t + g, clock[name], tol))
 
-    with Background(lambda: {name: pack(fixed_solid(name, spec)) for name, spec in fixed_specs.items()}) as made:
+    with SharedMap(fixed_solid, list(fixed_specs)) as made:
         slots: dict[str, int] = {}
 
         def fixed(name: str, spec):
@@ -305,7 +307,7 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
                  bores=(Bore("pen", (0.0, 0.0, t + params.pen_holder_height), DOWN, params.pen_diameter,
                                               params.pen_holder_height - PEN_FLOOR),)))
 
-        for name, data in made.result().items():
+        for name, data in zip(fixed_specs, made.results()):
             part = Part(name, "gear", unpack(data), gear=fixed_specs[name], clocking=clock[name], bores=(hub_bore,))
             parts[slots[name]] = replace(part, print_flip=least_support_flip(part.solid, params.printer.overhang_deg))
     contacts = _contacts(mech, params, st, len(legs))
