@@ -3,21 +3,20 @@
 manifold3d and most of partgen's numpy hold the GIL, so threads do not overlap them; a forked child
 does, and it needs nothing pickled but its results (it starts with the parent's memory: the kit,
 its solids and meshes). ``build`` uses it to make a gear chain's clocked gears while it makes the
-rest of the kit, and assembly.glb while it verifies and weighs the parts. The child computes exactly
-what the caller would (same code, same inputs), so the results are the same bytes either way.
+rest of the kit, and assembly.glb's motion and shaded meshes and each STL's report while it weighs
+the parts. The child computes exactly what the caller would (same code, same inputs), so the results
+are the same bytes either way.
 
-- ``Background(fn)``: one computation, ``fn()``, in the child.
-- ``SharedMap(fn, items)``: ``[fn(x) for x in items]``, the child working from the front while the
-  caller does its own work; when the caller asks for the results it takes items from the back
-  itself until the two meet, so neither waits for long whatever the balance of the work.
+``SharedMap(fn, items)`` is ``[fn(x) for x in items]``, the child working from the front while the
+caller does its own work; when the caller asks for the results it takes items from the back itself
+until the two meet, so neither waits for long whatever the balance of the work.
 
 Where it forks: Linux with more than one CPU for this process, unless ``PARTGEN_FORK=0``. Elsewhere
 (macOS and Windows, where forking a process that has imported numpy is unsafe or impossible, or one
 CPU) the work runs in the caller when its results are asked for. If the child dies without an
 answer, the caller computes what is missing itself; an exception in the work is raised in the
-caller (for ``SharedMap``, the first item's in order, as the list comprehension would). Work whose
-results are never asked for (the caller failed first) has its child killed when the ``with`` block
-ends.
+caller (the first failing item's in order, as the list comprehension would). Work whose results are
+never asked for (the caller failed first) has its child killed when the ``with`` block ends.
 """
 
 from __future__ import annotations
@@ -32,7 +31,7 @@ import tempfile
 import warnings
 from typing import Callable, Generic, Sequence, TypeVar
 
-__all__ = ["Background", "SharedMap", "can_fork"]
+__all__ = ["SharedMap", "can_fork"]
 
 T = TypeVar("T")
 _WHERE = struct.Struct("<QQ")  # what the child sends on the pipe: where an object lies in the file, its length
@@ -126,39 +125,6 @@ class _Child:
         self._file.close()
 
 
-class Background(Generic[T]):
-    """``with Background(fn) as job: ...; value = job.result()``: ``fn()`` runs in a forked child
-    from the ``with`` until ``result()`` (module docstring); ``fork=False`` runs it in the caller."""
-
-    def __init__(self, fn: Callable[[], T], fork: bool | None = None):
-        self._fn = fn
-        self._fork = can_fork() if fork is None else bool(fork and can_fork())
-        self._child: _Child | None = None
-
-    def __enter__(self) -> "Background[T]":
-        if self._fork:
-            self._child = _Child(lambda send: send(_attempt(self._fn)))
-        return self
-
-    def result(self) -> T:
-        """``fn()``'s value (raises what ``fn`` raised)."""
-        child, self._child = self._child, None
-        if child is None:
-            return self._fn()
-        got = []
-        while child.fd is not None and not got:
-            got = child.receive(block=True)
-        child.stop()
-        if not got:  # the child died without an answer: compute it here
-            return self._fn()
-        return _unwrap(got[0])
-
-    def __exit__(self, *exc) -> None:
-        if self._child is not None:  # never asked for: stop the child
-            self._child.stop()
-            self._child = None
-
-
 class SharedMap(Generic[T]):
     """``with SharedMap(fn, items) as job: ...; values = job.results()``: ``[fn(x) for x in items]``,
     a forked child working from the front from the ``with`` on, the caller from the back once it asks
@@ -221,10 +187,3 @@ def _attempt(fn: Callable[[], T]) -> tuple[bool, object]:
         return True, fn()
     except Exception as e:  # noqa: BLE001 - raised again in the caller
         return False, e
-
-
-def _unwrap(got: tuple[bool, object]):
-    ok, value = got
-    if ok:
-        return value
-    raise value
