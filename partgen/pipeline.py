@@ -7,6 +7,7 @@ CLI turns those into exit code 2. A target is a design YAML or a kit folder (its
 
 from __future__ import annotations
 
+import copy
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -125,6 +126,23 @@ def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
     return _KITS[key]
 
 
+_CHECKS: dict = {}  # the last checks of this process: (kit_key, samples) -> their Result (a copy kept)
+_CHECKS_KEPT = 4
+
+
+def checked(loaded: Loaded, kit: Kit, samples: int | None = None, progress=None) -> Result:
+    """The mechanism's check of a loaded design's kit at ``samples``, made once per process for a design
+    (``check`` then ``report``, or a notebook, check it once): a copy of the result the first check
+    gave. The key is ``kit_key`` — what the kit is built from, as ``make_kit``'s — and the samples;
+    the check is a function of them (the kit of one design is the same kit every time it is built)."""
+    key = (kit_key(loaded), samples)
+    if key not in _CHECKS:
+        _CHECKS[key] = loaded.mechanism.check(loaded.spec, kit, samples, progress)
+        while len(_CHECKS) > _CHECKS_KEPT:
+            del _CHECKS[next(iter(_CHECKS))]
+    return copy.deepcopy(_CHECKS[key])
+
+
 def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None,
                  kit_dir: Path | None = None, over: Overrides | None = None):
     """Claim the output folder of a command before any work: ``dest`` or out/<name>[/<sub>].
@@ -232,7 +250,7 @@ def check(target, samples: int | None = None, progress=None, plates_dir=None, wr
                              kit_dir, over)
     loaded = load(target, raw)
     kit = make_kit(loaded)
-    result = loaded.mechanism.check(loaded.spec, kit, samples, progress)
+    result = checked(loaded, kit, samples, progress)
     jam = jam_finding(loaded, kit, result, max_jam)
     if jam is not None:
         result.add(jam)
@@ -310,7 +328,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     kit = make_kit(loaded)
     mech, spec = loaded.mechanism, loaded.spec
     say("check")
-    result = mech.check(spec, kit, samples, None)
+    result = checked(loaded, kit, samples)
     _add_stale(result, kit, kit_dir)
     say("trace")
     with tempfile.TemporaryDirectory() as tmpdir:
