@@ -134,10 +134,13 @@ def checked(loaded: Loaded, kit: Kit, samples: int | None = None, progress=None)
     """The mechanism's check of a loaded design's kit at ``samples``, made once per process for a design
     (``check`` then ``report``, or a notebook, check it once): a copy of the result the first check
     gave. The key is ``kit_key`` — what the kit is built from, as ``make_kit``'s — and the samples;
-    the check is a function of them (the kit of one design is the same kit every time it is built)."""
+    the check is a function of them (the kit of one design is the same kit every time it is built).
+    A kit an ``auto`` search built and checked of its choice at the design's own samples is not
+    checked again (``autoplay.searched_check``)."""
     key = (kit_key(loaded), samples)
     if key not in _CHECKS:
-        _CHECKS[key] = loaded.mechanism.check(loaded.spec, kit, samples, progress)
+        handed = autoplay.searched_check(kit) if samples is None else None  # an ``auto`` search checked it already
+        _CHECKS[key] = handed if handed is not None else loaded.mechanism.check(loaded.spec, kit, samples, progress)
         while len(_CHECKS) > _CHECKS_KEPT:
             del _CHECKS[next(iter(_CHECKS))]
     return copy.deepcopy(_CHECKS[key])

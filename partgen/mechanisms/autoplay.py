@@ -174,6 +174,7 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
     except DesignError as e:
         raise ConfigError(raw.path, e.key_path, e.problem) from None
     result = mech.check(spec, kit, None, None)
+    as_checked = {id(kit): (kit, copy.deepcopy(result))}  # each kit's check as it came (for searched_result)
     model = hook(spec, kit, result, kit.printer.xy_accuracy)
     tol = getattr(raw.design, "tolerance", None)
     target = tol.max_jam_probability if tol is not None else 0.01
@@ -224,6 +225,7 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
             except DesignError as e:
                 raise ConfigError(raw.path, e.key_path, e.problem) from None
             result_v = mech.check(spec_v, kit_v, None, None)
+            as_checked[id(kit_v)] = (kit_v, copy.deepcopy(result_v))
             model_v = hook(spec_v, kit_v, result_v, kit_v.printer.xy_accuracy)
         own = int((_draws(model_v, AUTO_SAMPLES, got["seed"]) < 0.0).any(axis=1).sum())
         allowed = int(math.floor(target * AUTO_SAMPLES + 1e-9)) if got["reached"] else got["jams"]
@@ -258,24 +260,39 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
         remember("auto-play", what, {"values": design_values, "allocation": alloc})
     _DONE[key] = (design_values, alloc)
     chosen = _with(raw, design_values)
-    _hand_over(chosen, mech, specs.get(chosen.digest()), kit if _spec(raw, mech, values, specs) is spec and not
-               per_unit["adopted"] else None)
+    same = _spec(raw, mech, values, specs) is spec and not per_unit["adopted"]
+    _hand_over(chosen, mech, specs.get(chosen.digest()), kit if same else None,
+               as_checked[id(kit)][1] if same else None)
     return chosen, alloc
 
 
 _HANDED: dict = {}  # at most one: (kind, path, digest) -> (resolved design, its kit or None) of the last search's choice
+_HANDED_CHECK: list = []  # at most one: (kit, its check at the design's own samples) of the last search's choice
 
 
 def _handed_key(raw: LoadedDesign, mech) -> tuple:
     return mech.kind, str(Path(raw.path).resolve()), raw.digest()
 
 
-def _hand_over(chosen: LoadedDesign, mech, spec, kit) -> None:
+def _hand_over(chosen: LoadedDesign, mech, spec, kit, result=None) -> None:
     """Keep the chosen design's resolved design and, when the last verification round built exactly
-    that design (no per-unit allocation adopted), its kit, for ``searched_spec``/``searched_kit``."""
+    that design (no per-unit allocation adopted), its kit and its check, for ``searched_spec``,
+    ``searched_kit`` and ``searched_check``."""
     _HANDED.clear()
+    _HANDED_CHECK.clear()
     if spec is not None:
         _HANDED[_handed_key(chosen, mech)] = (spec, kit)
+        if kit is not None and result is not None:
+            _HANDED_CHECK.append((kit, result))
+
+
+def searched_check(kit):
+    """A copy of the check (``mech.check(spec, kit, None, None)``: the design's own samples, as it came)
+    the last search made of the kit it handed over, when ``kit`` is that very kit object; else None.
+    It is the check that call makes now: the same resolved design, the same kit, the same code."""
+    if _HANDED_CHECK and _HANDED_CHECK[0][0] is kit:
+        return copy.deepcopy(_HANDED_CHECK[0][1])
+    return None
 
 
 def searched_spec(raw: LoadedDesign, mech):

@@ -163,3 +163,33 @@ def test_a_choice_at_the_start_values_is_verified_on_the_start_kit(monkeypatch):
     assert got[0][1]["values"] == {"gears.backlash_per_gear_mm": autoplay.ROLES["backlash"][1]}
     assert [n for n, _ in got] == [1, 2]
     assert json.dumps(got[0][1], sort_keys=True) == json.dumps(got[1][1], sort_keys=True)
+
+
+def test_check_of_the_searched_kit_is_the_searchs_own(monkeypatch):
+    """The search checked its choice's kit at the design's own samples; `check` of that design in the
+    same process reads that check (``autoplay.searched_check``, through ``pipeline.checked``) instead
+    of checking again, and it is the check a new one gives, figure for figure and finding for
+    finding. Another kit object (even of the same design) gets nothing from it."""
+    from partgen.mechanisms import REGISTRY, autoplay
+
+    monkeypatch.setenv("PARTGEN_CACHE", "0")
+    monkeypatch.setattr(autoplay, "_DONE", {})
+    monkeypatch.setattr(pipeline, "_KITS", {})  # no kit of this design built before in this process
+    mech = REGISTRY["gear_pair"]
+    real, checks = type(mech).check, []
+    monkeypatch.setattr(type(mech), "check", lambda self, *a: checks.append(a[1]) or real(self, *a))
+    over = pipeline.overrides(TIGHT + ["gears.backlash_per_gear_mm=auto", "checks.samples=24"], "ender3_v3")
+    loaded = pipeline.load(CONFIG, over=over)
+    kit = pipeline.make_kit(loaded)  # the kit the search built and checked (handed over)
+    assert checks[-1] is kit
+    pipeline._CHECKS.clear()
+    n = len(checks)
+    got = pipeline.checked(loaded, kit)
+    assert len(checks) == n  # not checked again
+    fresh = real(mech, loaded.spec, kit, None, None)
+    assert [(f.check, f.severity, f.message, f.value) for f in got.findings] == \
+        [(f.check, f.severity, f.message, f.value) for f in fresh.findings]
+    drop = lambda fig: {k: v for k, v in fig.items() if k != "seconds"}  # noqa: E731
+    assert drop(got.figures) == drop(fresh.figures)
+    other = mech.build(loaded.spec, None)
+    assert autoplay.searched_check(other) is None and autoplay.searched_check(kit) is not None
