@@ -21,6 +21,7 @@ never asked for (the caller failed first) has its child killed when the ``with``
 
 from __future__ import annotations
 
+import itertools
 import os
 import pickle
 import select
@@ -168,13 +169,13 @@ class SharedMap(Generic[T]):
                     break
         finally:
             child.stop()
-        out = [*front[:hi]] + [back[i] for i in range(hi, len(self._items)) if i in back]
-        if len(out) < len(self._items) or any(not ok for ok, _ in out):
-            # a failure, or a child that died: the rest computed here, in order, so the first
-            # failing item raises (the items done are not done again)
-            done = [v for ok, v in front[:hi] if ok] if all(ok for ok, _ in front[:hi]) else []
-            return [*done, *[self._fn(x) for x in self._items[len(done):]]]
-        return [v for _, v in out]
+        answers = [*front[:hi], *(back[i] for i in range(hi, len(self._items)) if i in back)]
+        if len(answers) == len(self._items) and all(ok for ok, _ in answers):
+            return [v for _, v in answers]
+        # a failure, or a child that died: the child's answers before its first failure are kept, the
+        # rest computed here in order, so the first failing item raises
+        done = [v for _, v in itertools.takewhile(lambda a: a[0], front[:hi])]
+        return [*done, *(self._fn(x) for x in self._items[len(done):])]
 
     def __exit__(self, *exc) -> None:
         if self._child is not None:  # never asked for: stop the child

@@ -215,13 +215,14 @@ def write_kit(kit: Kit, dest: Path | OutputClaim, design: dict, extra_files: dic
     distinct = gltf.distinct_meshes(instances)
     # the independent pieces of work — assembly.glb's motion and shaded meshes, each STL's report —
     # shared with a forked child (core.background, from the front) while the manifest is made here
-    work = [("motion", None)] * (motion is not None) + [("shade", m) for m in distinct] + [("verify", g) for g in groups]
+    first = [("motion", None)] if motion is not None else []
+    work = first + [("shade", m) for m in distinct] + [("verify", g) for g in groups]
     with SharedMap(lambda item: _piece(kit, instances, motion, *item), work) as made:
         man = _manifest_of(kit, groups, design, bought)
         got = made.results()
-    verify_parts(groups, str(design.get("name", kit.name)), got[len(work) - len(groups):])
-    sampling = got[0] if motion is not None else None
-    meshes = got[len(work) - len(groups) - len(distinct):len(work) - len(groups)]
+    sampling = got[0] if first else None
+    meshes, reports = got[len(first):len(first) + len(distinct)], got[len(first) + len(distinct):]
+    verify_parts(groups, str(design.get("name", kit.name)), reports)
     files = {f"{g[0].part.name}.stl": g[0].stl for g in groups}
     files["manifest.json"] = (json.dumps(man, indent=1, allow_nan=False) + "\n").encode()
     files["assembly.glb"] = gltf.assembly_glb(kit, instances, motion, colours, shaded_meshes=meshes, sampling=sampling)

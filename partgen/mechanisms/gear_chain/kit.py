@@ -171,7 +171,7 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
     with SharedMap(fixed_solid, list(fixed_specs)) as made:
         slots: dict[str, int] = {}
 
-        def fixed(name: str, spec):
+        def fixed(name: str):
             say(name)
             slots[name] = len(parts)
             parts.append(None)  # filled once the child has made it
@@ -200,12 +200,12 @@ def build_kit(mech: ChainDesign, params: KitParams, progress=None, clock_error: 
                 bored[key] = P.bored_gear(spec, f, hole_of(name, hole))
             add(Part(name, "gear", bored[key], gear=spec, bores=(gear_bores[hole],)))
 
-        fixed("G1", mech.G1)
+        fixed("G1")
         loose("drive", mech.drive, "D")
         for s in mech.stages:
             loose(f"D{s.j}", s.D, "D")
             loose(f"M{s.j}", s.M, "round")
-            fixed(f"G{s.j + 1}", s.G)
+            fixed(f"G{s.j + 1}")
         params_belts = mech.belt_stages and _belts(mech)
         for s in mech.belt_stages:
             bs = params_belts
