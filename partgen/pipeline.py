@@ -139,7 +139,7 @@ def checked(loaded: Loaded, kit: Kit, samples: int | None = None, progress=None)
     checked again (``autoplay.searched_check``)."""
     key = (kit_key(loaded), samples)
     if key not in _CHECKS:
-        handed = autoplay.searched_check(kit) if samples is None else None  # an ``auto`` search checked it already
+        handed = autoplay.searched_check(loaded.raw, loaded.mechanism, kit) if samples is None else None
         _CHECKS[key] = handed if handed is not None else loaded.mechanism.check(loaded.spec, kit, samples, progress)
         while len(_CHECKS) > _CHECKS_KEPT:
             del _CHECKS[next(iter(_CHECKS))]

@@ -266,8 +266,8 @@ def resolve_auto(raw: LoadedDesign, mech, start_spec=None) -> tuple[LoadedDesign
     return chosen, alloc
 
 
-_HANDED: dict = {}  # at most one: (kind, path, digest) -> (resolved design, its kit or None) of the last search's choice
-_HANDED_CHECK: list = []  # at most one: (kit, its check at the design's own samples) of the last search's choice
+_HANDED: dict = {}  # at most one: (kind, path, digest) -> (resolved design, its kit still to hand over or None,
+#                                  (its kit, that kit's check) or None) of the last search's choice
 
 
 def _handed_key(raw: LoadedDesign, mech) -> tuple:
@@ -279,20 +279,9 @@ def _hand_over(chosen: LoadedDesign, mech, spec, kit, result=None) -> None:
     that design (no per-unit allocation adopted), its kit and its check, for ``searched_spec``,
     ``searched_kit`` and ``searched_check``."""
     _HANDED.clear()
-    _HANDED_CHECK.clear()
     if spec is not None:
-        _HANDED[_handed_key(chosen, mech)] = (spec, kit)
-        if kit is not None and result is not None:
-            _HANDED_CHECK.append((kit, result))
-
-
-def searched_check(kit):
-    """A copy of the check (``mech.check(spec, kit, None, None)``: the design's own samples, as it came)
-    the last search made of the kit it handed over, when ``kit`` is that very kit object; else None.
-    It is the check that call makes now: the same resolved design, the same kit, the same code."""
-    if _HANDED_CHECK and _HANDED_CHECK[0][0] is kit:
-        return copy.deepcopy(_HANDED_CHECK[0][1])
-    return None
+        checked = (kit, result) if kit is not None and result is not None else None
+        _HANDED[_handed_key(chosen, mech)] = (spec, kit, checked)
 
 
 def searched_spec(raw: LoadedDesign, mech):
@@ -314,8 +303,19 @@ def searched_kit(raw: LoadedDesign, mech, spec):
     got = _HANDED.get(key)
     if got is None or got[0] is not spec or got[1] is None:
         return None
-    _HANDED[key] = (got[0], None)
+    _HANDED[key] = (got[0], None, got[2])
     return got[1]
+
+
+def searched_check(raw: LoadedDesign, mech, kit):
+    """A copy of the check (``mech.check(spec, kit, None, None)``: the design's own samples, as it came)
+    the last search made of its choice's kit, when ``raw`` is that choice and ``kit`` that very kit
+    object (``searched_kit``'s); else None. It is the check that call makes now: the same resolved
+    design, the same kit, the same code."""
+    got = _HANDED.get(_handed_key(raw, mech))
+    if got is None or got[2] is None or got[2][0] is not kit:
+        return None
+    return copy.deepcopy(got[2][1])
 
 
 def _units(model, keys: dict, got: dict, most: dict, built_at: dict) -> tuple[list[Unit], list[int]] | str:

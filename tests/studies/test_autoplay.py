@@ -192,4 +192,6 @@ def test_check_of_the_searched_kit_is_the_searchs_own(monkeypatch):
     drop = lambda fig: {k: v for k, v in fig.items() if k != "seconds"}  # noqa: E731
     assert drop(got.figures) == drop(fresh.figures)
     other = mech.build(loaded.spec, None)
-    assert autoplay.searched_check(other) is None and autoplay.searched_check(kit) is not None
+    raw = loaded.raw
+    assert autoplay.searched_check(raw, mech, other) is None and autoplay.searched_check(raw, mech, kit) is not None
+    assert autoplay.searched_check(raw, REGISTRY["gear_chain"], kit) is None  # another kind's key
