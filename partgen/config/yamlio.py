@@ -71,27 +71,38 @@ class _Constructor12(SafeConstructor):
 _Constructor12.add_constructor("tag:yaml.org,2002:int", _Constructor12.construct_yaml_int)
 _Constructor12.add_constructor("tag:yaml.org,2002:float", _Constructor12.construct_yaml_float)
 
-try:  # libyaml's parser when present (fast); the pure-Python one otherwise
-    from yaml import CParser as _Parser
-except ImportError:  # pragma: no cover
-    from yaml.composer import Composer
-    from yaml.parser import Parser
-    from yaml.reader import Reader
-    from yaml.scanner import Scanner
-
-    class _Parser(Reader, Scanner, Parser, Composer):  # type: ignore[no-redef]
-        def __init__(self, stream):
-            Reader.__init__(self, stream)
-            Scanner.__init__(self)
-            Parser.__init__(self)
-            Composer.__init__(self)
+from yaml.composer import Composer
+from yaml.parser import Parser
+from yaml.reader import Reader
+from yaml.scanner import Scanner
 
 
-class _Loader(_Parser, _Constructor12, _Resolver12):
+class _Loader(Reader, Scanner, Parser, Composer, _Constructor12, _Resolver12):
+    """The pure-Python parser: what decides what a file means, and words its errors."""
+
     def __init__(self, stream):
-        _Parser.__init__(self, stream)
+        Reader.__init__(self, stream)
+        Scanner.__init__(self)
+        Parser.__init__(self)
+        Composer.__init__(self)
         _Constructor12.__init__(self)
         _Resolver12.__init__(self)
+
+
+try:  # libyaml's parser (a tenth of the time): a file it reads is read by it; one it refuses is read again by _Loader
+    from yaml.cyaml import CParser
+except ImportError:  # pragma: no cover
+    _FastLoader = None
+else:
+    class _FastLoader(CParser, _Constructor12, _Resolver12):  # type: ignore[no-redef]
+        def __init__(self, stream):
+            CParser.__init__(self, stream)
+            _Constructor12.__init__(self)
+            _Resolver12.__init__(self)
+
+
+class _Refused(Exception):
+    """libyaml refused the text: the pure-Python parser reads it again (and words the error)."""
 
 
 def _mark(e: yaml.YAMLError) -> str:
@@ -99,11 +110,11 @@ def _mark(e: yaml.YAMLError) -> str:
     return f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
 
 
-def _prescan(text: str, path: Path) -> None:
-    """Refuse deep nesting before libyaml's composer sees it (it recurses in C)."""
+def _prescan(text: str, path: Path, loader) -> None:
+    """Refuse deep nesting before a composer sees it (libyaml's recurses in C)."""
     depth = 0
     try:
-        for ev in yaml.parse(text, Loader=_Loader):
+        for ev in yaml.parse(text, Loader=loader):
             if isinstance(ev, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
                 depth += 1
                 if depth > MAX_DEPTH:
@@ -113,6 +124,8 @@ def _prescan(text: str, path: Path) -> None:
             elif isinstance(ev, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
                 depth -= 1
     except yaml.YAMLError as e:
+        if loader is not _Loader:
+            raise _Refused from None
         problem = getattr(e, "problem", None) or str(e).splitlines()[0]
         raise ConfigError(path, "", f"invalid YAML{_mark(e)}: {problem}") from None
 
@@ -158,9 +171,20 @@ def _walk(root, path: Path) -> None:
 
 
 def parse_yaml(text: str, path: Path):
-    """The data of a YAML 1.2 document (see the module doc); ConfigError naming ``path``."""
-    _prescan(text, path)
-    loader = _Loader(text)
+    """The data of a YAML 1.2 document (see the module doc); ConfigError naming ``path``. Read by
+    libyaml when it is there; text libyaml refuses is read by the pure-Python parser, whose reading
+    and error messages (line, column, the character) are the ones that count."""
+    if _FastLoader is not None:
+        try:
+            return _parse(text, path, _FastLoader)
+        except _Refused:
+            pass
+    return _parse(text, path, _Loader)
+
+
+def _parse(text: str, path: Path, loader_class):
+    _prescan(text, path, loader_class)
+    loader = loader_class(text)
     try:
         node = loader.get_single_node()
         if node is None:
@@ -168,6 +192,8 @@ def parse_yaml(text: str, path: Path):
         _walk(node, path)
         return loader.construct_document(node)
     except yaml.YAMLError as e:
+        if loader_class is not _Loader:
+            raise _Refused from None
         problem = getattr(e, "problem", None) or str(e).splitlines()[0]
         raise ConfigError(path, "", f"invalid YAML{_mark(e)}: {problem}") from None
     except (ValueError, OverflowError) as e:  # a scalar the constructor cannot convert

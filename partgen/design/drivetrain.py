@@ -175,7 +175,19 @@ def _mesh_broken(g1: GearSpec, g2: GearSpec, rules: GearRules) -> tuple[str, ...
 
 
 def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits):
-    """(best teeth or None, zmin, Counter of the rules that turned candidates away)."""
+    """(best teeth or None, zmin, Counter of the rules that turned candidates away). Pure: remembered
+    by what it reads (``_searched``), the Counter a fresh copy each time."""
+    best, zmin, turned = _searched(length, ratio, system, limits.min_pitch_diameter, limits.min_root_diameter,
+                                   limits.tip_gap, limits.idler_reach, limits.rules)
+    return best, zmin, Counter(dict(turned))
+
+
+@lru_cache(maxsize=16384)
+def _searched(length: float, ratio: Fraction, system: ToothSystem, min_pitch_diameter: float,
+              min_root_diameter: float, tip_gap: float, idler_reach: float, rules: GearRules | None):
+    """``_search`` of the Limits made of these fields (the rest it does not read); the Counter as
+    (rule, count) pairs in the order they were counted."""
+    limits = Limits(min_pitch_diameter, min_root_diameter, tip_gap, idler_reach, rules)
     zmin = _min_teeth(limits, system)
     rules = limits.rules
     if rules is not None:  # a rack that cannot generate a gear (fillets that overlap) is the design's error
@@ -217,7 +229,7 @@ def _search(length: float, ratio: Fraction, system: ToothSystem, limits: Limits)
                     continue
             best, best_key = (td, tm, tg), key
             break
-    return best, zmin, turned
+    return best, zmin, tuple(turned.items())
 
 
 PRINTER_RULES = {"tip-width"}  # rules of the printer, not of the gears: auto builds past them, with a warning

@@ -236,14 +236,25 @@ def working_pressure_angle(z1, z2, alpha, x1, x2) -> float:
 
 def inv_inverse(y: float) -> float:
     """The angle a (rad) with ``inv(a) = tan(a) - a = y`` for 0 < y ≤ inv(1.5), by Newton's method
-    (``inv(a) >= a**3/3``, so it starts right of the root and converges monotonically)."""
+    (``inv(a) >= a**3/3``, so it starts right of the root and converges monotonically).
+
+    At most 100 steps, stopping at a step under 1e-16 a. Most roots never take so small a step: the
+    last ulps cycle through a few values. An iterate seen before repeats its successors, so the
+    100th step is read off the cycle instead of iterated to (the same number, a quarter the time)."""
     a = min((3.0 * y) ** (1.0 / 3.0), 1.5)
-    for _ in range(100):
+    seen: dict[float, int] = {}  # each iterate -> the step that made it
+    after: list[float] = []  # the iterate after each step
+    for n in range(100):
         ta = math.tan(a)
         step = (ta - a - y) / (ta * ta)
         a -= step
         if abs(step) <= 1e-16 * a:
             break
+        k = seen.get(a)
+        if k is not None:  # steps k … n − 1 repeat for ever: step 99 lands where the cycle puts it
+            return after[k + (99 - k) % (n - k)]
+        seen[a] = n
+        after.append(a)
     return a
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 from typing import Protocol
 
 from ..core.printer import PrinterLimits
@@ -206,6 +207,7 @@ def auto_module(inputs: MechanismInputs, params: ChainParams, advise: bool = Tru
                       "gears.module_mm")
 
 
+@lru_cache(maxsize=4096)
 def gear_triangles(gear: GearSpec) -> int:
     """Triangles of a gear's toothed prism: its outline's n vertices make 2n side triangles and
     about 2n in the two caps."""

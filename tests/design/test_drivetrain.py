@@ -1,6 +1,8 @@
 """Eq 11 ratios, tooth counts (explicit and auto), Eq 12-13, idler placement, mesh clocking."""
 
 import math
+from collections import Counter
+from dataclasses import replace
 from fractions import Fraction
 from pathlib import Path
 
@@ -152,3 +154,26 @@ def test_gear_poses_follow_eq11(default):
     for s, link in zip(mech.stages, mech.chain.links[1:]):
         turned = p1[f"G{s.j + 1}"].angle - p0[f"G{s.j + 1}"].angle
         assert turned == pytest.approx(link.speed * 0.3, abs=1e-12)
+
+
+def test_the_teeth_search_is_remembered_by_what_it_reads():
+    """``teeth: auto``'s search is pure: a second ask of the same link, ratio, tooth system and the
+    limits it reads gives the first answer without searching; the limits it does not read (the axle,
+    whether a refusal advises) share it, one it reads (the smallest gear) does not; its Counter of the
+    rules that turned teeth away is the caller's own to change."""
+    from partgen.design import drivetrain as dt
+    from partgen.design.rules import GearRules
+
+    sys_ = ToothSystem(module=1.3, pressure_angle=math.radians(20), profile_shift=None)
+    lim = Limits(min_pitch_diameter=11.0, min_root_diameter=9.0, tip_gap=1.5, idler_reach=1.0,
+                 rules=GearRules(min_contact_ratio=1.2, min_tip_width=0.9), axle_diameter=3.0, min_axle_diameter=2.0)
+    dt._searched.cache_clear()
+    first = dt._search(60.0, Fraction(3, 2), sys_, lim)
+    assert dt._searched.cache_info().misses == 1 and first[0] is not None
+    first[2]["tip-width"] += 100
+    assert dt._search(60.0, Fraction(3, 2), sys_, replace(lim, axle_diameter=4.0, advise=False)) == \
+        (first[0], first[1], first[2] - Counter({"tip-width": 100}))
+    assert dt._searched.cache_info().hits == 1
+    assert choose_stage(1, 60.0, Fraction(3, 2), sys_, lim) == make_stage(1, 60.0, Fraction(3, 2), first[0], sys_)
+    larger = dt._search(60.0, Fraction(3, 2), sys_, replace(lim, min_pitch_diameter=30.0))
+    assert dt._searched.cache_info().misses == 2 and larger[1] > first[1] and larger[0] != first[0]
