@@ -152,11 +152,17 @@ SHARED = {
         "test_crossed_helical.py",
     "test_shipped_jam.py::test_shipped_design_turns_in_99_percent_of_prints[gear_train_worm]": "test_worm.py",
 }
-# The groups that take longest go first, longest first, so the two workers end together (summed seconds
-# in a whole run at 6ebc49a: 65, 48, 39, 30, 24, 24, 24, 23, 21, 18; every other group under 16).
+# The groups that take longest go first, longest first, so the two workers end together: every group of
+# 5 s or more (summed seconds of a whole `--durations=0` run at fc9f983: 55, 47, 38, 34, 26, 24, 22, 22, 20,
+# 19, 16, 14, 12, 11, 10, …, 5); the rest (each under 5 s, 80 s in all) after them in the order collected.
+# xdist's own reordering (by the number of tests a group has) is turned off in pytest_configure.
 FIRST = ("test_contract.py", "test_check.py", "test_bennett_cli.py", "test_wrist_auto.py", "test_wrist.py",
-         "test_printers.py", "test_throated_wheel.py", "test_manifest_schema.py", "test_report.py",
-         "test_bench_sweep.py")
+         "test_manifest_schema.py", "test_throated_wheel.py", "test_printers.py", "test_report.py",
+         "test_bench_sweep.py", "test_autoplay.py", "test_bad_input.py", "test_determinism.py", "test_rules.py",
+         "test_tolerance.py", "test_exact_chain.py", "test_autoplay_allocate.py", "test_bevel.py", "test_outputs.py",
+         "test_crossed_helical.py", "test_kit.py", "test_multi_turn_drawings.py", "test_verify.py",
+         "test_wrist_mate.py", "test_contact_pattern.py", "test_autoplay_clearance.py", "test_worm.py",
+         "test_autoplay_crossed.py", "test_viewer.py", "test_drawn_curves.py", "test_cli.py")
 
 
 def _group(nodeid: str) -> str:
@@ -189,4 +195,5 @@ class _SharedKitsScheduling:
 
 def pytest_configure(config):
     if config.pluginmanager.hasplugin("xdist"):
+        config.option.loadscopereorder = False  # the groups in FIRST's order (xdist sorts by number of tests)
         config.pluginmanager.register(_SharedKitsScheduling(), "partgen-shared-kits")
