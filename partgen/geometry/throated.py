@@ -7,11 +7,12 @@ worm's thread in their relative motion (line contact instead of the plain wheel'
 
 One tooth is cut, not all: the mesh repeats every tooth of the wheel, so the blank's wedge round
 tooth 0 (one tooth pitch and a little more each side) is cut by the cutter at every phase at which
-it passes the worm, one boolean at a time (the wedge stays small; a union of the overlapping cutter
-poses first is far slower), and the wheel is that tooth turned to each of its places and joined to
-the hub below the roots. The cutter takes only a few orientations (a worm turned by its tooth
-pitch is itself), so it is cut to the blank's ring once per orientation and that small piece is
-what each pose turns.
+it passes the worm, one boolean at a time, each done at once (the wedge stays small; a union of the
+overlapping cutter poses first, which manifold3d makes of a chain of deferred differences, is five
+times as slow), and the wheel is that tooth turned to each of its places and joined to the hub
+below the roots. The cutter takes only a few orientations (a worm turned by its tooth pitch is
+itself), so it is cut to the blank's ring once per orientation and that small piece is what each
+pose turns.
 """
 
 from __future__ import annotations
@@ -33,6 +34,14 @@ OVERLAP_RAD = 0.02  # each tooth's wedge reaches this far into its neighbours' (
 SLIVER_MM3 = 1e-6  # pieces of a cut smaller than this are the booleans' zero-volume slivers
 ROOT_OVERLAP_MM = 0.02  # the hub's top above the generated root: the spaces' roots stand this much higher
 SEAM_RAD = 0.002  # each cut tooth is trimmed this far short of the middles of its spaces: its copies never touch
+
+
+def _now(solid: m3d.Manifold) -> m3d.Manifold:
+    """``solid`` with its booleans done now: manifold3d defers them, and a chain of differences left
+    to the end is flattened into one difference from the union of all the cut pieces (here ~70
+    overlapping ones: five times as slow as cutting them one by one)."""
+    solid.num_vert()
+    return solid
 
 
 def throated_wheel(cutter: m3d.Manifold, orientations: Iterable[tuple[np.ndarray, Iterable[float]]], teeth: int,
@@ -71,7 +80,7 @@ def throated_wheel(cutter: m3d.Manifold, orientations: Iterable[tuple[np.ndarray
         for turn in angles:
             piece = near.rotate((0.0, 0.0, -math.degrees(turn))) ^ wedge
             if not piece.is_empty():
-                tooth = tooth - piece
+                tooth = _now(tooth - piece)
     tooth = tooth ^ sector_prism(tip_radius + 1.0, 0.0, math.pi / teeth - SEAM_RAD, face / 2 + 1.0)
     kept = [c for c in tooth.decompose() if c.volume() > SLIVER_MM3]
     tooth = m3d.Manifold.batch_boolean(kept, m3d.OpType.Add) if len(kept) > 1 else kept[0]

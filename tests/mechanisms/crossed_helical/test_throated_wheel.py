@@ -1,6 +1,6 @@
 """The throated worm wheel (``gears.throated: true``): the shipped worm's wheel cut by the worm's
-envelope instead of a plain helical wheel (here at a 0.03 mm chord tolerance: one build of ~10 s of
-CPU, shared by the module; at 0.02 mm it took half again as long and the figures tested hold at both:
+envelope instead of a plain helical wheel (here at a 0.03 mm chord tolerance: one build and check of ~5 s,
+shared by the module; at 0.02 mm it took half again as long and the figures tested hold at both:
 the backlash ~0.09 mm at 0.03 against ~0.095 mm at 0.02, over its 0.08 mm floor). Its STL is one closed shell, its root is the torus the cutter's tip
 sweeps (measured on sections of the mesh), the exact check passes (no overlap, backlash both ways)
 and its contact runs across the whole face where the plain wheel's covers under half; bad input."""
