@@ -162,6 +162,20 @@ class PartCapsules:
     radius: float = 0.0
 
 
+def _least_per_pair(d: np.ndarray, pair: np.ndarray) -> dict[int, int]:
+    """pair (a·13 + b) -> the index of its least ``d`` (the first such index where several tie):
+    two passes over the arrays, no sort."""
+    if not len(d):
+        return {}
+    least = np.full(169, np.inf)
+    np.minimum.at(least, pair, d)
+    at = np.flatnonzero(d == least[pair])
+    first = np.full(169, len(d))
+    np.minimum.at(first, pair[at], at)
+    keys = np.flatnonzero(np.bincount(pair, minlength=169))
+    return dict(zip(keys.tolist(), first[keys].tolist()))
+
+
 class Sweep:
     """Capsule clearances of every pair of parts over fixed shape angles. The frames are computed
     once; each part's capsules and each pair's result are remembered by the parts' states, so a
@@ -272,11 +286,7 @@ class Sweep:
                 need[c, b if a == c else a] = True
                 left.discard((a, b))
         d, ni, pair, counted, far = self._batch(rows, need, caps, below)
-        best = {}
-        if len(d):
-            order = np.lexsort((d, pair))
-            first = np.unique(pair[order], return_index=True)
-            best = dict(zip(first[0].tolist(), order[first[1]].tolist()))
+        best = _least_per_pair(d, pair)
         out = {}
         for a, b in pairs:
             k = a * 13 + b if need[a, b] else b * 13 + a
