@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import copy
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import NamedTuple
 
@@ -128,6 +128,17 @@ def make_kit(loaded: Loaded, progress=None, fresh: bool = False) -> Kit:
 
 _CHECKS: dict = {}  # the last checks of this process: (kit_key, samples) -> their Result (a copy kept)
 _CHECKS_KEPT = 4
+_TRACES: dict = {}  # the last traces: (kit_key, samples) -> (a copy of the Trace, {file: bytes} or None)
+_TRACES_KEPT = 2
+
+
+def _keep(memo: dict, key, value, kept: int):
+    """``memo[key] = value``, the oldest entries dropped past ``kept``; returns ``value``."""
+    memo.pop(key, None)
+    memo[key] = value
+    while len(memo) > kept:
+        del memo[next(iter(memo))]
+    return value
 
 
 def checked(loaded: Loaded, kit: Kit, samples: int | None = None, progress=None) -> Result:
@@ -140,10 +151,40 @@ def checked(loaded: Loaded, kit: Kit, samples: int | None = None, progress=None)
     key = (kit_key(loaded), samples)
     if key not in _CHECKS:
         handed = autoplay.searched_check(loaded.raw, loaded.mechanism, kit) if samples is None else None
-        _CHECKS[key] = handed if handed is not None else loaded.mechanism.check(loaded.spec, kit, samples, progress)
-        while len(_CHECKS) > _CHECKS_KEPT:
-            del _CHECKS[next(iter(_CHECKS))]
+        _keep(_CHECKS, key, handed if handed is not None else loaded.mechanism.check(loaded.spec, kit, samples, progress),
+              _CHECKS_KEPT)
     return copy.deepcopy(_CHECKS[key])
+
+
+def _trace_copy(trace: Trace, files: tuple) -> Trace:
+    return replace(trace, stats=copy.deepcopy(trace.stats), files=files,
+                   data=None if trace.data is None else trace.data.copy())
+
+
+def traced(loaded: Loaded, kit: Kit | None, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
+    """The mechanism's trace of a loaded design (its figures into ``out`` when given), made once per
+    process for a design and samples as ``checked`` is (``trace`` then ``report`` trace once): a copy
+    of the first, its figures' bytes written into ``out``. A trace kept without figures makes them
+    anew for a folder; one kept without its animation (``Trace.animation``) makes it anew when
+    asked to animate, and one kept with it leaves it out when not."""
+    key = (kit_key(loaded), samples)
+    got = _TRACES.get(key)
+    if got is not None and out is not None:
+        files = got[1]
+        if files is None or (animate and not set(got[0].animation) <= set(files)):
+            got = None
+    if got is None:
+        trace = loaded.mechanism.trace(loaded.spec, kit, samples, out, animate)
+        files = None if out is None else {name: (out / name).read_bytes() for name in trace.files}
+        _keep(_TRACES, key, (_trace_copy(trace, trace.files), files), _TRACES_KEPT)
+        return trace
+    trace, files = got
+    if out is None:
+        return _trace_copy(trace, ())
+    names = tuple(n for n in files if animate or n not in trace.animation)
+    for name in names:
+        (out / name).write_bytes(files[name])
+    return _trace_copy(trace, names)
 
 
 def output_claim(raw: LoadedDesign, dest, kind: str, default_sub: str | None, option: str, notify=None,
@@ -274,9 +315,9 @@ def trace(target, samples: int | None = None, plots_dir=None, animate: bool = Tr
                                                          kit_dir=loaded.kit_dir, over=over)
     kit = make_kit(loaded) if loaded.mechanism.trace_needs_kit else None
     if claim is None:
-        return Traced(loaded, loaded.mechanism.trace(loaded.spec, kit, samples, None, animate), None)
+        return Traced(loaded, traced(loaded, kit, samples, None, animate), None)
     with atomic_dir(claim) as tmp:
-        tr = loaded.mechanism.trace(loaded.spec, kit, samples, tmp, animate)
+        tr = traced(loaded, kit, samples, tmp, animate)
     return Traced(loaded, tr, claim.dest)
 
 
@@ -335,7 +376,7 @@ def report(target, dest=None, samples: int | None = None, progress=None, over: O
     _add_stale(result, kit, kit_dir)
     say("trace")
     with tempfile.TemporaryDirectory() as tmpdir:
-        tr = mech.trace(spec, kit, None, Path(tmpdir), False)  # no 2-D animation: the 3-D view moves
+        tr = traced(loaded, kit, None, Path(tmpdir), False)  # no 2-D animation: the 3-D view moves
         files = {name: (Path(tmpdir) / name).read_bytes() for name in tr.files}
     plates = plate_pngs(kit, mech.plate_margin(spec), result)
     say("pictures")

@@ -109,16 +109,19 @@ class Motion:
 class Trace:
     """What `trace` found: figures (JSON-able), the names of the plot files the mechanism wrote into
     the ``out`` folder it was given (none without one), and the text the CLI prints. ``data``: (n, k)
-    rows for ``--csv`` with ``columns``."""
+    rows for ``--csv`` with ``columns``. ``animation``: the files it writes only when asked to
+    animate (named whether asked or not; the rest of the trace is the same either way)."""
 
     stats: dict
     files: tuple = ()
     text: str = ""
     columns: tuple[str, ...] = ()
     data: np.ndarray | None = None
+    animation: tuple[str, ...] = ()
 
     def __post_init__(self):
         object.__setattr__(self, "files", tuple(self.files))
+        object.__setattr__(self, "animation", tuple(self.animation))
 
 
 Section = tuple[str, str]  # (title, html) of a report page

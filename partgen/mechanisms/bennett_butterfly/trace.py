@@ -10,7 +10,6 @@ from pathlib import Path
 import numpy as np
 
 from ...core.protocol import Trace
-from ..trace_memo import remembered
 from . import kit as A
 from .params import BennettParams
 from .parts import home_inputs
@@ -21,12 +20,7 @@ __all__ = ["trace", "csv", "trace_text"]
 def trace(kind: str, spec: BennettParams, kit: A.BennettKit, samples: int | None, out: Path | None,
           animate: bool = True) -> Trace:
     """The linkage over its workspace: the poses (planar and spatial) and the path of the common
-    centre of mass (its worst distance from S over a turn of q1, per shape angle); poses.png, com.png
-    (``mechanisms.trace_memo`` keeps the last ones)."""
-    return remembered(kind, spec, kit, samples, out, lambda folder: _trace(kind, kit, samples, folder))
-
-
-def _trace(kind: str, kit: A.BennettKit, samples: int | None, out: Path | None) -> Trace:
+    centre of mass (its worst distance from S over a turn of q1, per shape angle); poses.png, com.png."""
     p = kit.params
     n = samples or p.grid[1]
     nq = p.grid[0]

@@ -9,7 +9,6 @@ from pathlib import Path
 
 from ...core.protocol import Trace
 from .. import solid_pair
-from ..trace_memo import remembered
 from .contact import PAIR
 from .kit import CrossedKit
 from .resolve import CrossedSpec
@@ -19,8 +18,7 @@ __all__ = ["trace", "csv", "trace_text"]
 
 def trace(kind: str, spec: CrossedSpec, kit: CrossedKit, samples: int | None, out: Path | None,
           animate: bool = True) -> Trace:
-    return remembered(kind, spec, kit, samples, out,
-                      lambda folder: solid_pair.trace(PAIR, kind, spec, kit, samples, folder))
+    return solid_pair.trace(PAIR, kind, spec, kit, samples, out)
 
 
 def csv(header: str, trace: Trace) -> str:

@@ -10,7 +10,6 @@ import numpy as np
 
 from ...core.quantise import r6
 from ...core.protocol import Trace
-from ..trace_memo import remembered
 from .kit import Kit
 from .resolve import ChainSpec
 
@@ -46,14 +45,7 @@ def pen_error_band(spec: ChainSpec, theta: np.ndarray):
 
 def trace(spec: ChainSpec, kit: Kit | None, samples: int | None, out: Path | None,
           animate: bool = True) -> Trace:
-    """The pen of the chain as built over one crank turn vs its targets; trace.png/.svg/.gif into
-    ``out`` (of the design alone: the kit is not read; ``mechanisms.trace_memo`` keeps the last ones)."""
-    gif = ("trace.gif",)
-    return remembered("gear_chain", spec, None, samples, out, lambda folder: _trace(spec, samples, folder, animate),
-                      needs=gif if animate else (), without=() if animate else gif)
-
-
-def _trace(spec: ChainSpec, samples: int | None, out: Path | None, animate: bool) -> Trace:
+    """The pen of the chain as built over one crank turn vs its targets; trace.png/.svg/.gif into ``out``."""
     from ...design.synthesis import trace as trace_chain
     from ...design.trace import built_chain, built_speeds, crank_turns, deviation, target_paths
 
@@ -92,7 +84,7 @@ def _trace(spec: ChainSpec, samples: int | None, out: Path | None, animate: bool
             trace_animation(mech, out / "trace.gif")
             files.append("trace.gif")
     return Trace(stats, files, columns=("theta_rad", "x_mm", "y_mm"),
-                 data=np.column_stack([theta, pen.real, pen.imag]))
+                 data=np.column_stack([theta, pen.real, pen.imag]), animation=("trace.gif",))
 
 
 def csv(header: str, trace: Trace) -> str:

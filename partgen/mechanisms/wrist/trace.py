@@ -9,7 +9,6 @@ import numpy as np
 
 from ...core.protocol import Trace
 from ...design import spherical as sph
-from ..trace_memo import remembered
 from .kit import workspace_theta_max
 from .spec import WristSpec
 
@@ -17,12 +16,7 @@ __all__ = ["trace", "csv", "trace_text"]
 
 
 def trace(kind: str, spec: WristSpec, kit, samples: int | None, out: Path | None, animate: bool = True) -> Trace:
-    """The ratio i(θ) and the mating angle φ(θ) over the valid range, the tooth rows; wrist.png/.svg
-    (of the design alone: the kit is not read; ``mechanisms.trace_memo`` keeps the last ones)."""
-    return remembered(kind, spec, None, samples, out, lambda folder: _trace(kind, spec, samples, folder))
-
-
-def _trace(kind: str, spec: WristSpec, samples: int | None, out: Path | None) -> Trace:
+    """The ratio i(θ) and the mating angle φ(θ) over the valid range, the tooth rows; wrist.png/.svg."""
     samples = samples or 2000
     pair = sph.tooth_rows(spec.I, spec.A, spec.long_pitch, spec.ring_teeth)
     theta_max = workspace_theta_max(spec.I, spec.max_bend)
