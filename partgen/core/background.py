@@ -4,7 +4,7 @@ manifold3d and most of partgen's numpy hold the GIL, so threads do not overlap t
 does, and it needs nothing pickled but its results (it starts with the parent's memory: the kit,
 its solids and meshes). ``build`` uses it to make a gear chain's clocked gears while it makes the
 rest of the kit, and assembly.glb's motion and shaded meshes and each STL's report while it weighs
-the parts. The child computes exactly what the caller would (same code, same inputs), so the results
+the parts; a GLB made for `report` shades its meshes with it too. The child computes exactly what the caller would (same code, same inputs), so the results
 are the same bytes either way.
 
 ``SharedMap(fn, items)`` is ``[fn(x) for x in items]``, the child working from the front while the

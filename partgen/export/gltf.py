@@ -33,13 +33,12 @@ from __future__ import annotations
 
 import json
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
 import struct
 from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.background import SharedMap
 from ..core.parts import Part
 from ..core.protocol import Kit, Motion
 from ..design.graph import components
@@ -311,8 +310,8 @@ def assembly_glb(kit: Kit, instances: list[Instance], motion: Motion | None = No
     meshes, mesh_of = [], {}
     distinct = distinct_meshes(instances)
     if shaded_meshes is None:
-        with ThreadPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:  # numpy lets go of the GIL
-            shaded_meshes = list(pool.map(shaded, distinct))  # each mesh its own: no shared state
+        with SharedMap(shaded, distinct) as job:  # shared with a forked child (core.background), as write_kit does
+            shaded_meshes = job.results()
     shading = dict(zip(map(id, distinct), shaded_meshes))
     for it in instances:
         key = id(it.mesh)
