@@ -119,19 +119,17 @@ def at_start(raw: LoadedDesign) -> LoadedDesign:
     return _with(raw, {k: ROLES[r][1] for k, r in keys.items()}) if keys else raw
 
 
-def _spec(raw: LoadedDesign, mech, values: dict, memo: dict | None = None):
-    """``mech.resolve`` of the design with ``values`` (``_with``); with ``memo`` (one search's own:
-    the design's digest -> its resolved design; the search's path is one) each design once."""
+def _spec(raw: LoadedDesign, mech, values: dict, memo: dict):
+    """``mech.resolve`` of the design with ``values`` (``_with``), each design once: ``memo`` is one
+    search's own (the design's digest -> its resolved design; the search's path is one)."""
     at = _with(raw, values)
-    if memo is None:
-        return mech.resolve(at)
     d = at.digest()
     if d not in memo:
         memo[d] = mech.resolve(at)
     return memo[d]
 
 
-def _builds(raw: LoadedDesign, mech, values: dict, memo: dict | None = None) -> str | None:
+def _builds(raw: LoadedDesign, mech, values: dict, memo: dict) -> str | None:
     """None when the design resolves with ``values``; else what stops it."""
     try:
         _spec(raw, mech, values, memo)
@@ -336,7 +334,7 @@ def _units(model, keys: dict, got: dict, most: dict, built_at: dict) -> tuple[li
 
 
 def _per_unit(raw: LoadedDesign, mech, model, keys: dict, got: dict, most: dict, worst_model, built_at: dict,
-              specs: dict | None = None) -> dict:
+              specs: dict) -> dict:
     """Each gear its own backlash and each running fit its own clearance, from the uniform choice
     ``got`` (``design.allocate.allocate_units``, on the same prints and grids, each unit at most its
     key's most), with a probability of a jam (each margin's exact normal tail, summed) no more than

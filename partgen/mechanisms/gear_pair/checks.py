@@ -19,7 +19,7 @@ from .resolve import PairSpec
 
 __all__ = ["outline", "flank_play", "sweep", "check", "check_text"]
 
-_SWEEPS: list[tuple] = []  # (kit, thetas' bytes, tol, play): the last sweeps, newest last
+_SWEEPS: list[tuple] = []  # (kit, thetas' bytes, play): the last sweeps, newest last
 _SWEEPS_KEPT = 2
 
 
@@ -83,14 +83,14 @@ def _turned_and_moved(geom, angle: float, dx: float):
 def sweep(spec: PairSpec, kit: PairKit, samples: int | None, progress=None):
     """(gear 1's angles over one output turn, their ``flank_play``) at ``samples`` angles (the
     design's own when None). The last two sweeps are kept in memory, each keyed on the kit object
-    itself, the angles' bytes and the tolerance: `report` runs the check and the trace over the same
-    kit, and a process running `trace` and then `report` on one kit sweeps it once (a kit is frozen;
-    another kit, even an equal one, is swept anew)."""
+    itself and the angles' bytes (the tolerance is always flank_play's default): `report` runs the
+    check and the trace over the same kit, and a process running `trace` and then `report` on one kit
+    sweeps it once (a kit is frozen; another kit, even an equal one, is swept anew)."""
     n = samples or spec.samples
     thetas = np.linspace(0.0, 2 * math.pi * spec.gear2.teeth / spec.gear1.teeth, n, endpoint=False)
     key = thetas.tobytes()
-    for k, (memo_kit, memo_key, memo_tol, memo_play) in enumerate(_SWEEPS):
-        if memo_kit is kit and memo_key == key and memo_tol == 1e-6:
+    for k, (memo_kit, memo_key, memo_play) in enumerate(_SWEEPS):
+        if memo_kit is kit and memo_key == key:
             _SWEEPS.append(_SWEEPS.pop(k))
             if progress:
                 progress(n, n)
@@ -102,7 +102,7 @@ def sweep(spec: PairSpec, kit: PairKit, samples: int | None, progress=None):
         if progress:
             progress(min((i + 1) * 16, n), n)
     play = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
-    _SWEEPS.append((kit, key, 1e-6, {name: v.copy() for name, v in play.items()}))
+    _SWEEPS.append((kit, key, {name: v.copy() for name, v in play.items()}))
     del _SWEEPS[:-_SWEEPS_KEPT]
     return thetas, play
 
